@@ -1,0 +1,221 @@
+#pragma once
+/// \file
+/// \brief A uniform cell grid for finding the particles within a radius of a point.
+///
+/// The particles are counting-sorted into cells of a chosen size, and a copy of their
+/// positions is kept in cell order so that the candidates of one cell are contiguous in
+/// memory.  A query visits every cell that overlaps the cube of half-width R around the
+/// point, and reports each particle closer than R.
+///
+/// **Periodic axes.**  On a periodic axis the cell range of a query may run past either face;
+/// a raw cell coordinate c then stands for cell c mod n of the periodic image k = floor(c/n)
+/// of the box, and the candidate is the particle shifted by k box lengths.  When the query
+/// radius exceeds the box width (a narrow tube), the range wraps more than once and the same
+/// particle is reported once per image that lies within R -- which is exactly what the SPH sums
+/// need.  The image is returned packed in one integer (see pack_image).
+
+#include "sph/box.hpp"
+#include "sph/dimension.hpp"
+#include "sph/error.hpp"
+
+#include <algorithm>
+#include <array>
+#include <cstdint>
+#include <limits>
+#include <vector>
+
+namespace sph {
+
+/// A periodic image: the shift in box lengths along each axis, packed one signed byte per
+/// axis.  Image 0 is the particle itself.
+using Image = std::uint32_t;
+
+/// Pack per-axis shifts k_a (each in [-127, 127]) into an Image.
+template <int D>
+inline Image pack_image(const std::array<int, D>& shift) {
+  Image image = 0;
+  for (int a = 0; a < D; ++a) {
+    image |= static_cast<Image>(static_cast<std::uint8_t>(static_cast<std::int8_t>(shift[a])))
+             << (8 * a);
+  }
+  return image;
+}
+
+/// The shift of axis a of a packed image, in box lengths.
+inline int image_shift(Image image, int axis) {
+  return static_cast<std::int8_t>(static_cast<std::uint8_t>((image >> (8 * axis)) & 0xffu));
+}
+
+/// The image seen from the other particle of the pair: all shifts negated.
+template <int D>
+inline Image mirror_image(Image image) {
+  std::array<int, D> shift{};
+  for (int a = 0; a < D; ++a) shift[a] = -image_shift(image, a);
+  return pack_image<D>(shift);
+}
+
+template <int D>
+class CellGrid {
+ public:
+  /// Sort the positions into cells of (about) `cell_size` on every axis.  Periodic axes get a
+  /// whole number of cells across the box; positions must already be wrapped into the box on
+  /// those axes.  Open axes span the particles' bounding box.  The total number of cells is
+  /// kept below a few times the particle number, so a tiny cell size cannot exhaust memory.
+  void build(const std::vector<Vec<D>>& x, const Box<D>& box, double cell_size) {
+    require(!x.empty(), "cell grid: no particles");
+    require(std::isfinite(cell_size) && cell_size > 0,
+            "cell grid: the cell size must be positive and finite");
+    box_ = box;
+    set_geometry(x, cell_size);
+    sort_into_cells(x);
+  }
+
+  /// Call f(j, image, r_ij, r2) for every particle j (or periodic image of it) with
+  /// |r_ij| < radius, where r_ij = point - (x_j + image offset).  The point itself, if it is a
+  /// particle, is reported too (with r2 = 0, image 0): callers skip it when they need to.
+  template <class F>
+  void for_each_within(const Vec<D>& point, double radius, F&& f) const {
+    std::array<int, D> first{}, last{};
+    for (int a = 0; a < D; ++a) {
+      first[a] = cell_coordinate(point[a] - radius, a);
+      last[a] = cell_coordinate(point[a] + radius, a);
+      if (!box_.periodic[a]) {
+        first[a] = std::max(first[a], 0);
+        last[a] = std::min(last[a], cells_[a] - 1);
+        if (first[a] > last[a]) return;
+      }
+    }
+    const double radius2 = radius * radius;
+    std::array<int, D> raw = first;
+    while (true) {
+      // Visit one cell: wrap its raw coordinates and remember the periodic image.
+      int cell = 0, stride = 1;
+      std::array<int, D> shift{};
+      Vec<D> offset = Vec<D>::Zero();
+      for (int a = 0; a < D; ++a) {
+        int c = raw[a];
+        if (box_.periodic[a]) {
+          const int wrapped = ((c % cells_[a]) + cells_[a]) % cells_[a];
+          shift[a] = (c - wrapped) / cells_[a];
+          offset[a] = shift[a] * box_.length(a);
+          c = wrapped;
+        }
+        cell += c * stride;
+        stride *= cells_[a];
+      }
+      const Image image = pack_image<D>(shift);
+      const Vec<D> shifted_point = point - offset;
+      for (std::uint32_t p = cell_start_[cell]; p < cell_start_[cell + 1]; ++p) {
+        const Vec<D> r = shifted_point - sorted_position_[p];
+        const double r2 = r.squaredNorm();
+        if (r2 < radius2) f(sorted_index_[p], image, r, r2);
+      }
+      // Advance the odometer over the D cell ranges.
+      int a = 0;
+      while (a < D && raw[a] == last[a]) {
+        raw[a] = first[a];
+        ++a;
+      }
+      if (a == D) break;
+      ++raw[a];
+    }
+  }
+
+  /// The separation vector added to x_j for a packed image.
+  Vec<D> image_offset(Image image) const {
+    Vec<D> offset = Vec<D>::Zero();
+    for (int a = 0; a < D; ++a) {
+      if (box_.periodic[a]) offset[a] = image_shift(image, a) * box_.length(a);
+    }
+    return offset;
+  }
+
+  int cells(int axis) const { return cells_[axis]; }
+  double cell_size(int axis) const { return cell_size_[axis]; }
+  /// The largest query radius that stays within the grid on every open axis (any larger
+  /// radius finds nothing more there); on a fully periodic box it is unbounded.
+  double extent() const {
+    double e = 0;
+    for (int a = 0; a < D; ++a) e = std::max(e, cells_[a] * cell_size_[a]);
+    return e;
+  }
+  const Box<D>& box() const { return box_; }
+
+ private:
+  // Choose origin, number of cells and cell size on each axis.
+  void set_geometry(const std::vector<Vec<D>>& x, double target) {
+    Vec<D> lo = x[0], hi = x[0];
+    for (const auto& xi : x) {
+      lo = lo.cwiseMin(xi);
+      hi = hi.cwiseMax(xi);
+    }
+    require(lo.allFinite() && hi.allFinite(), "cell grid: a particle position is not finite");
+    // Keep the number of cells at most ~4 N (+ a floor): enlarge the target until it fits.
+    const double max_cells = 4.0 * static_cast<double>(x.size()) + 64.0;
+    for (int attempt = 0; attempt < 200; ++attempt) {
+      double total = 1.0;
+      for (int a = 0; a < D; ++a) {
+        if (box_.periodic[a]) {
+          const double L = box_.length(a);
+          cells_[a] = std::max(1, static_cast<int>(std::min(L / target, 1e6)));
+          origin_[a] = box_.lower[a];
+          cell_size_[a] = L / cells_[a];
+        } else {
+          const double span = hi[a] - lo[a];
+          cells_[a] = std::max(1, static_cast<int>(std::min(std::ceil(span / target), 1e6)));
+          cell_size_[a] = std::max(span / cells_[a], target);
+          // Centre the grid on the particles; the outermost ones stay strictly inside.
+          origin_[a] = 0.5 * (lo[a] + hi[a]) - 0.5 * cells_[a] * cell_size_[a];
+        }
+        total *= cells_[a];
+      }
+      if (total <= max_cells) return;
+      target *= 1.25;
+    }
+    throw Error("cell grid: could not choose a cell size (particles spread over too large a range)");
+  }
+
+  int cell_coordinate(double xa, int a) const {
+    const double c = std::floor((xa - origin_[a]) / cell_size_[a]);
+    // Clamp far-away coordinates so huge radii cannot overflow an int.
+    const double limit = 1e8;
+    return static_cast<int>(std::clamp(c, -limit, limit));
+  }
+
+  // Counting sort of the particles into cells (stable: deterministic order inside a cell).
+  void sort_into_cells(const std::vector<Vec<D>>& x) {
+    int total = 1;
+    for (int a = 0; a < D; ++a) total *= cells_[a];
+    std::vector<std::uint32_t> cell_of(x.size());
+    cell_start_.assign(static_cast<std::size_t>(total) + 1, 0);
+    for (std::size_t i = 0; i < x.size(); ++i) {
+      int cell = 0, stride = 1;
+      for (int a = 0; a < D; ++a) {
+        const int c = std::clamp(cell_coordinate(x[i][a], a), 0, cells_[a] - 1);
+        cell += c * stride;
+        stride *= cells_[a];
+      }
+      cell_of[i] = static_cast<std::uint32_t>(cell);
+      ++cell_start_[cell + 1];
+    }
+    for (int c = 0; c < total; ++c) cell_start_[c + 1] += cell_start_[c];
+    sorted_position_.resize(x.size());
+    sorted_index_.resize(x.size());
+    std::vector<std::uint32_t> fill(cell_start_.begin(), cell_start_.end() - 1);
+    for (std::size_t i = 0; i < x.size(); ++i) {
+      const std::uint32_t p = fill[cell_of[i]]++;
+      sorted_position_[p] = x[i];
+      sorted_index_[p] = static_cast<std::uint32_t>(i);
+    }
+  }
+
+  Box<D> box_;
+  Vec<D> origin_ = Vec<D>::Zero();
+  Vec<D> cell_size_ = Vec<D>::Ones();
+  std::array<int, D> cells_{};
+  std::vector<std::uint32_t> cell_start_;
+  std::vector<Vec<D>> sorted_position_;
+  std::vector<std::uint32_t> sorted_index_;
+};
+
+}  // namespace sph

@@ -1,0 +1,112 @@
+#pragma once
+/// \file
+/// \brief Smoothing kernels: one table of shapes and normalisations, one evaluator.
+///
+/// A kernel is written \f$ W(r, h) = \frac{\sigma_D}{h^D}\, w(q) \f$ with \f$ q = r/h \f$.
+/// The shape \f$ w(q) \f$ is dimension-free; the normalisation \f$ \sigma_D \f$ makes
+/// \f$ \int W\, dV = 1 \f$ in D dimensions.  Everything a pass needs comes from one call,
+/// `Shape::evaluate(q)`, which returns \f$ w \f$, \f$ dw/dq \f$ and \f$ (dw/dq)/q \f$.  The
+/// last one gives the gradient without dividing by \f$ r \f$, so coincident particles
+/// (\f$ r = 0 \f$) get a zero gradient rather than a NaN:
+/// \f[ \nabla_i W(\mathbf r_{ij}, h) = \frac{\sigma_D}{h^{D+2}}\,
+///     \frac{1}{q}\frac{dw}{dq}\; \mathbf r_{ij}. \f]
+
+#include "sph/dimension.hpp"
+
+#include <numbers>
+
+namespace sph {
+
+/// The shape of a kernel at one q: value and derivatives.
+struct KernelShape {
+  double w = 0;             ///< w(q)
+  double dw_dq = 0;         ///< dw/dq
+  double dw_dq_over_q = 0;  ///< (dw/dq)/q, finite at q = 0
+};
+
+/// The M4 cubic spline of Monaghan & Lattanzio (1985): Selhammar (1997) eq 3, Watkins et al.
+/// (1996) eqs A2-A3.  Support 2h; normalisation 2/3, 10/(7 pi), 1/pi in 1D, 2D, 3D.
+struct CubicSpline {
+  static constexpr const char* name = "M4 cubic spline";
+  static constexpr double support = 2.0;  ///< W = 0 for q >= support
+
+  template <int D>
+  static constexpr double normalisation() {
+    if constexpr (D == 1) return 2.0 / 3.0;
+    if constexpr (D == 2) return 10.0 / (7.0 * std::numbers::pi);
+    if constexpr (D == 3) return 1.0 / std::numbers::pi;
+  }
+
+  static constexpr KernelShape evaluate(double q) {
+    if (q < 1.0) {
+      return {1.0 - 1.5 * q * q + 0.75 * q * q * q, -3.0 * q + 2.25 * q * q, -3.0 + 2.25 * q};
+    }
+    if (q < 2.0) {
+      const double s = 2.0 - q;
+      return {0.25 * s * s * s, -0.75 * s * s, -0.75 * s * s / q};
+    }
+    return {};
+  }
+};
+
+/// The Wendland C2 kernel (Wendland 1995; Dehnen & Aly 2012), scaled to the same support 2h as
+/// the M4 so the two can be swapped at equal h.  Given for comparison: it has no pairing
+/// instability at large neighbour numbers.  In 1D the C2 function differs from 2D/3D.
+template <int D>
+struct WendlandC2 {
+  static constexpr const char* name = "Wendland C2";
+  static constexpr double support = 2.0;
+
+  // With s = q/2: 1D phi = (1-s)^3 (1+3s), norm 5/4 / (2h);  2D/3D phi = (1-s)^4 (1+4s), norm
+  // 7/pi / (2h)^2 and 21/(2 pi) / (2h)^3.
+  template <int Dim>
+  static constexpr double normalisation() {
+    static_assert(Dim == D, "WendlandC2<D> is defined per dimension");
+    if constexpr (D == 1) return 5.0 / 4.0 / 2.0;
+    if constexpr (D == 2) return 7.0 / std::numbers::pi / 4.0;
+    if constexpr (D == 3) return 21.0 / (2.0 * std::numbers::pi) / 8.0;
+  }
+
+  static constexpr KernelShape evaluate(double q) {
+    if (q >= 2.0) return {};
+    const double s = 0.5 * q, t = 1.0 - s;
+    if constexpr (D == 1) {
+      return {t * t * t * (1.0 + 3.0 * s), -6.0 * s * t * t, -3.0 * t * t};
+    } else {
+      return {t * t * t * t * (1.0 + 4.0 * s), -10.0 * s * t * t * t, -5.0 * t * t * t};
+    }
+  }
+};
+
+/// A kernel shape with its D-dimensional normalisation: the evaluator the passes call.
+template <int D, class Shape = CubicSpline>
+struct Kernel {
+  using shape = Shape;
+  static constexpr double sigma = Shape::template normalisation<D>();
+  static constexpr double support = Shape::support;
+
+  /// W(r, h).
+  static double value(double r, double h) {
+    const double inv_h = 1.0 / h;
+    return sigma * power<D>(inv_h) * Shape::evaluate(r * inv_h).w;
+  }
+
+  /// dW/dr (a scalar; negative inside the support).
+  static double derivative(double r, double h) {
+    const double inv_h = 1.0 / h;
+    return sigma * power<D + 1>(inv_h) * Shape::evaluate(r * inv_h).dw_dq;
+  }
+
+  /// The factor g with \f$ \nabla_i W(\mathbf r_{ij}, h) = g\, \mathbf r_{ij} \f$.
+  static double gradient_factor(double r, double h) {
+    const double inv_h = 1.0 / h;
+    return sigma * power<D + 2>(inv_h) * Shape::evaluate(r * inv_h).dw_dq_over_q;
+  }
+
+  /// \f$ \nabla_i W(\mathbf r_{ij}, h) \f$ for \f$ \mathbf r_{ij} = \mathbf r_i - \mathbf r_j \f$.
+  static Vec<D> gradient(const Vec<D>& r_ij, double h) {
+    return gradient_factor(r_ij.norm(), h) * r_ij;
+  }
+};
+
+}  // namespace sph

@@ -1,0 +1,392 @@
+#pragma once
+/// \file
+/// \brief Smoothing lengths and the neighbour list, built once per step and shared by every pass.
+///
+/// The list holds, for each particle i, every particle j (or periodic image of j) with
+/// \f$ r_{ij} < 2\max(h_i, h_j) \f$.  That one symmetric list serves all the sums of the
+/// toolkit: the gather form \f$ W(r_{ij}, h_i) \f$ (Watkins et al. 1996 eq A1), the
+/// pair-averaged form \f$ W(r_{ij}, \bar h_{ij}) \f$ (Selhammar 1997 eqs 1, 5) and the
+/// scatter form \f$ W(r_{ij}, h_j) \f$.  Pairs are stored once per side, so every pass is a
+/// gather loop over i: each particle writes only its own sums, the passes run in parallel
+/// without locks, and the result does not depend on the number of threads.
+///
+/// Three ways to choose h (SmoothingLengthRule):
+///  - **fixed**: h_i as given (Watkins' static tests and Poiseuille flow);
+///  - **neighbour number**: h_i such that particle i has N neighbours within 2h_i, within a
+///    tolerance of ±ΔN (Selhammar: 64 in 3D; Watkins: ±10 %).  When the count falls outside the
+///    tolerance we place 2h_i half-way between the N-th and (N+1)-th nearest neighbour, so the
+///    count becomes N exactly -- no iteration is needed;
+///  - **density**: \f$ h_i = \left(\frac{N m_i}{V_D 2^D \rho_i}\right)^{1/D} \f$ with the
+///    gather density \f$ \rho_i(h_i) \f$, solved per particle by Newton iteration (Watkins
+///    eqs A6-A7; \f$ V_D \f$ is the volume of the unit ball, so N is the expected neighbour
+///    number).
+///
+/// "Neighbours" never include the particle itself (its own periodic images do count).
+
+#include "sph/box.hpp"
+#include "sph/cell_grid.hpp"
+#include "sph/dimension.hpp"
+#include "sph/error.hpp"
+#include "sph/kernel.hpp"
+#include "sph/particles.hpp"
+
+#include <omp.h>
+
+#include <algorithm>
+#include <cstdint>
+#include <span>
+#include <string>
+#include <vector>
+
+namespace sph {
+
+/// One neighbour of a particle: its index and which periodic image of it.
+struct Neighbour {
+  std::uint32_t index;
+  Image image;
+};
+
+/// How smoothing lengths are chosen.
+struct SmoothingLengthRule {
+  enum class Mode { fixed, neighbour_number, density };
+  Mode mode = Mode::neighbour_number;
+  double neighbours = 64;  ///< target neighbour number N
+  double tolerance = 0;    ///< neighbour_number: accepted deviation ±ΔN (absolute count)
+  double density_tolerance = 1e-8;  ///< density: relative tolerance on h
+  int max_iterations = 100;         ///< density: Newton iterations before giving up
+
+  static SmoothingLengthRule fixed() { return {Mode::fixed}; }
+  static SmoothingLengthRule neighbour_number(double n, double tolerance = 0) {
+    return {Mode::neighbour_number, n, tolerance};
+  }
+  static SmoothingLengthRule from_density(double n) { return {Mode::density, n}; }
+};
+
+/// The symmetric neighbour list in compressed-row form.
+template <int D>
+class NeighbourList {
+ public:
+  /// The neighbours of particle i.
+  std::span<const Neighbour> of(std::size_t i) const {
+    return {entries_.data() + offset_[i], entries_.data() + offset_[i + 1]};
+  }
+  /// r_ij = x_i - x_j - (image offset): the separation from neighbour n of particle i.
+  Vec<D> separation(const std::vector<Vec<D>>& x, std::size_t i, const Neighbour& n) const {
+    Vec<D> r = x[i] - x[n.index];
+    if (n.image != 0) r -= offset(n.image);
+    return r;
+  }
+  Vec<D> offset(Image image) const {
+    Vec<D> o = Vec<D>::Zero();
+    for (int a = 0; a < D; ++a) o[a] = image_shift(image, a) * period_[a];
+    return o;
+  }
+  std::size_t particles() const { return offset_.empty() ? 0 : offset_.size() - 1; }
+  /// Total number of (i, j) entries: every interacting pair counts twice.
+  std::size_t entries() const { return entries_.size(); }
+
+ private:
+  template <int, class>
+  friend class NeighbourSearch;
+  std::vector<std::size_t> offset_;
+  std::vector<Neighbour> entries_;
+  Vec<D> period_ = Vec<D>::Zero();
+};
+
+/// Updates smoothing lengths by a rule and builds the neighbour list (the first pass of every
+/// step).  Keep one instance per scene: it reuses its buffers from step to step.
+template <int D, class K = Kernel<D>>
+class NeighbourSearch {
+ public:
+  /// Update p.smoothing_length and p.neighbour_count by `rule`, then rebuild the list.
+  /// Positions on periodic axes must lie in the box (the integrator wraps them).
+  void update(Particles<D>& p, const Box<D>& box, const SmoothingLengthRule& rule) {
+    const std::size_t n = p.size();
+    require(n > 0, "neighbour search: no particles");
+    require(n < (std::size_t{1} << 31), "neighbour search: too many particles");
+    validate_rule(rule);
+    initial_guess(p, box, rule);
+    grid_.build(p.position, box, cell_size(p.smoothing_length));
+    const int threads = omp_get_max_threads();
+    blocks_.resize(static_cast<std::size_t>(threads));
+    std::string error;
+#pragma omp parallel num_threads(threads)
+    {
+      const auto t = static_cast<std::size_t>(omp_get_thread_num());
+      const std::size_t nt = static_cast<std::size_t>(omp_get_num_threads());
+      Block& block = blocks_[t];
+      block.begin = n * t / nt;
+      block.end = n * (t + 1) / nt;
+      try {
+        find_candidates(p, rule, block);
+      } catch (const Error& e) {
+#pragma omp critical
+        if (error.empty()) error = e.what();
+      }
+#pragma omp barrier
+      if (error.empty()) keep_neighbours(p, block);
+    }
+    if (!error.empty()) throw Error(error);
+    assemble_list(box);
+    require_neighbours(p);
+  }
+
+  const NeighbourList<D>& list() const { return list_; }
+  const CellGrid<D>& grid() const { return grid_; }
+
+  /// Relative margin of the candidate search radius over 2h (candidates found beyond 2h let
+  /// the neighbour-number rule move h without a second search).
+  double search_margin = 0.1;
+
+ private:
+  struct Candidate {
+    std::uint32_t index;
+    Image image;
+    double r2;
+  };
+  // The work of one thread: a contiguous range of particles, its candidates and the pairs it
+  // keeps.  One-sided pairs (r_ij < 2h_i but >= 2h_j) are recorded so j gets them too.
+  struct Block {
+    std::size_t begin = 0, end = 0;
+    std::vector<std::size_t> candidate_start;
+    std::vector<Candidate> candidates;
+    std::vector<std::size_t> kept_start;
+    std::vector<Neighbour> kept;
+    std::vector<std::pair<std::uint32_t, Neighbour>> reverse;  // (j, entry for j)
+  };
+
+  static void validate_rule(const SmoothingLengthRule& rule) {
+    if (rule.mode == SmoothingLengthRule::Mode::fixed) return;
+    require(std::isfinite(rule.neighbours) && rule.neighbours >= 1,
+            "smoothing length: the target neighbour number must be at least 1 (got " +
+                std::to_string(rule.neighbours) + ")");
+    require(rule.tolerance >= 0 && rule.tolerance < rule.neighbours,
+            "smoothing length: the neighbour tolerance must lie in [0, N)");
+  }
+
+  // Particles without a smoothing length get one from the mean volume per particle.
+  void initial_guess(Particles<D>& p, const Box<D>& box, const SmoothingLengthRule& rule) {
+    const std::size_t n = p.size();
+    bool all_set = true;
+    for (std::size_t i = 0; i < n; ++i) {
+      const double h = p.smoothing_length[i];
+      if (rule.mode == SmoothingLengthRule::Mode::fixed) {
+        require(std::isfinite(h) && h > 0, "particle " + std::to_string(i) + " has smoothing length " +
+                                               std::to_string(h) + " (fixed h must be positive)");
+      }
+      if (!(std::isfinite(h) && h > 0)) all_set = false;
+    }
+    if (all_set) return;
+    Vec<D> lo = p.position[0], hi = p.position[0];
+    for (const auto& x : p.position) {
+      lo = lo.cwiseMin(x);
+      hi = hi.cwiseMax(x);
+    }
+    double volume = 1.0;
+    for (int a = 0; a < D; ++a) {
+      const double extent = box.periodic[a] ? box.length(a) : hi[a] - lo[a];
+      volume *= std::max(extent, 1e-300);
+    }
+    const double per_particle = volume / static_cast<double>(n);
+    const double neighbours = std::max(rule.neighbours, 1.0);
+    const double guess = 0.5 * root<D>(neighbours * per_particle / unit_ball_volume<D>());
+    for (auto& h : p.smoothing_length) {
+      if (!(std::isfinite(h) && h > 0)) h = guess;
+    }
+  }
+
+  double cell_size(const std::vector<double>& h) const {
+    std::vector<double> sample;
+    const std::size_t step = std::max<std::size_t>(1, h.size() / 1024);
+    for (std::size_t i = 0; i < h.size(); i += step) sample.push_back(h[i]);
+    std::nth_element(sample.begin(), sample.begin() + sample.size() / 2, sample.end());
+    const double median = sample[sample.size() / 2];
+    // A cell of half the search radius visits 4-5 cells per axis but a smaller volume than
+    // cells of the full radius (2.5^D vs 3^D times the radius^D); in 1D the full radius wins.
+    const double fraction = D == 1 ? 1.0 : 0.5;
+    return fraction * K::support * median * (1.0 + search_margin);
+  }
+
+  // Phase 1 (per thread): gather candidates of each particle and settle its h.
+  void find_candidates(Particles<D>& p, const SmoothingLengthRule& rule, Block& block) {
+    block.candidate_start.clear();
+    block.candidates.clear();
+    std::vector<Candidate> found;
+    for (std::size_t i = block.begin; i < block.end; ++i) {
+      settle_particle(p, rule, i, found);
+      block.candidate_start.push_back(block.candidates.size());
+      block.candidates.insert(block.candidates.end(), found.begin(), found.end());
+    }
+    block.candidate_start.push_back(block.candidates.size());
+  }
+
+  // Gather the candidates of particle i within radius (the particle itself excluded).
+  void gather(const Particles<D>& p, std::size_t i, double radius, std::vector<Candidate>& found) const {
+    found.clear();
+    grid_.for_each_within(p.position[i], radius, [&](std::uint32_t j, Image image, const Vec<D>&, double r2) {
+      if (j == i && image == 0) return;
+      found.push_back({j, image, r2});
+    });
+  }
+
+  // Choose h_i by the rule, growing the search radius until the candidates suffice.
+  void settle_particle(Particles<D>& p, const SmoothingLengthRule& rule, std::size_t i,
+                       std::vector<Candidate>& found) const {
+    double& h = p.smoothing_length[i];
+    double radius = K::support * h * (1.0 + search_margin);
+    const double grid_extent = grid_.extent();
+    for (int attempt = 0; attempt < 64; ++attempt) {
+      gather(p, i, radius, found);
+      const bool settled = [&] {
+        switch (rule.mode) {
+          case SmoothingLengthRule::Mode::fixed: return true;
+          case SmoothingLengthRule::Mode::neighbour_number: return settle_by_count(rule, radius, found, h);
+          case SmoothingLengthRule::Mode::density: return settle_by_density(p, rule, i, radius, found, h);
+        }
+        return true;
+      }();
+      if (settled) {
+        p.neighbour_count[i] = count_within(found, K::support * h);
+        return;
+      }
+      const bool bounded = std::none_of(grid_.box().periodic.begin(), grid_.box().periodic.end(),
+                                        [](bool b) { return b; });
+      require(!(bounded && radius > 2.0 * grid_extent),
+              "particle " + std::to_string(i) + ": only " + std::to_string(found.size()) +
+                  " other particles in the whole set, cannot reach " +
+                  std::to_string(rule.neighbours) + " neighbours");
+      radius *= 1.5;
+    }
+    throw Error("particle " + std::to_string(i) + " at " + to_string<D>(p.position[i]) +
+                ": no smoothing length found (search radius grew to " + std::to_string(radius) + ")");
+  }
+
+  static int count_within(const std::vector<Candidate>& found, double radius) {
+    const double r2max = radius * radius;
+    int count = 0;
+    for (const auto& c : found) count += c.r2 < r2max;
+    return count;
+  }
+
+  // Neighbour-number rule: keep h while the count is within tolerance, else put 2h half-way
+  // between the N-th and (N+1)-th nearest candidate.  False when the candidates do not reach
+  // that far (the caller widens the search).
+  static bool settle_by_count(const SmoothingLengthRule& rule, double radius,
+                              std::vector<Candidate>& found, double& h) {
+    const int count = count_within(found, K::support * h);
+    if (std::abs(count - rule.neighbours) <= rule.tolerance && K::support * h <= radius) return true;
+    const auto n = static_cast<std::size_t>(std::llround(rule.neighbours));
+    if (found.size() < n + 1) return false;
+    auto by_distance = [](const Candidate& a, const Candidate& b) { return a.r2 < b.r2; };
+    std::nth_element(found.begin(), found.begin() + static_cast<std::ptrdiff_t>(n - 1), found.end(), by_distance);
+    const double rn = std::sqrt(found[n - 1].r2);
+    const double rn1 = std::sqrt(std::min_element(found.begin() + static_cast<std::ptrdiff_t>(n), found.end(), by_distance)->r2);
+    h = 0.5 * (rn + rn1) / K::support;
+    return true;
+  }
+
+  // Density rule: Newton iteration on f(h) = rho(h) h^D - N m / (V_D 2^D) = 0, with the gather
+  // density rho(h) = sum_j m_j W(r_ij, h) + m_i W(0, h).  False when 2h leaves the candidates.
+  static bool settle_by_density(const Particles<D>& p, const SmoothingLengthRule& rule, std::size_t i,
+                                double radius, const std::vector<Candidate>& found, double& h) {
+    const double target = rule.neighbours * p.mass[i] / (unit_ball_volume<D>() * power<D>(K::support));
+    double h_new = h;
+    for (int iteration = 0; iteration < rule.max_iterations; ++iteration) {
+      if (K::support * h_new > radius) {
+        h = h_new;
+        return false;
+      }
+      // rho h^D = sum m_j sigma w(q_j): its derivative in h is sum m_j sigma dw/dq (-q_j/h).
+      double sum = p.mass[i] * K::sigma * K::shape::evaluate(0.0).w, dsum = 0;
+      const double inv_h = 1.0 / h_new;
+      for (const auto& c : found) {
+        const double q = std::sqrt(c.r2) * inv_h;
+        if (q >= K::support) continue;
+        const KernelShape s = K::shape::evaluate(q);
+        sum += p.mass[c.index] * K::sigma * s.w;
+        dsum -= p.mass[c.index] * K::sigma * s.dw_dq * q * inv_h;
+      }
+      // f(h) = sum(h) - target * ... with rho h^D = sum: solve sum(h) = target.
+      const double f = sum - target;
+      double step = dsum > 0 ? f / dsum : 0.0;
+      if (!(dsum > 0) || std::abs(step) > 0.5 * h_new) step = f > 0 ? -0.3 * h_new : 0.3 * h_new;
+      h_new = h_new - step;
+      if (std::abs(step) < rule.density_tolerance * h_new) {
+        h = h_new;
+        return K::support * h <= radius;
+      }
+    }
+    throw Error("particle " + std::to_string(i) + " at " + to_string<D>(p.position[i]) +
+                ": smoothing length from density did not converge in " +
+                std::to_string(rule.max_iterations) + " iterations (last h = " + std::to_string(h_new) + ")");
+  }
+
+  // Phase 2 (per thread, all h final): keep pairs with r_ij < 2 max(h_i, h_j).  A candidate
+  // list covers r < 2h_i; a pair with 2h_i <= r < 2h_j is found from j's side and handed to i.
+  void keep_neighbours(const Particles<D>& p, Block& block) const {
+    block.kept_start.clear();
+    block.kept.clear();
+    block.reverse.clear();
+    const auto& h = p.smoothing_length;
+    for (std::size_t i = block.begin; i < block.end; ++i) {
+      block.kept_start.push_back(block.kept.size());
+      const double reach_i = K::support * h[i];
+      for (std::size_t c = block.candidate_start[i - block.begin]; c < block.candidate_start[i - block.begin + 1]; ++c) {
+        const Candidate& cand = block.candidates[c];
+        if (cand.r2 >= reach_i * reach_i) continue;
+        block.kept.push_back({cand.index, cand.image});
+        const double reach_j = K::support * h[cand.index];
+        if (cand.r2 >= reach_j * reach_j) {
+          block.reverse.push_back({cand.index, {static_cast<std::uint32_t>(i), mirror_image<D>(cand.image)}});
+        }
+      }
+    }
+    block.kept_start.push_back(block.kept.size());
+  }
+
+  // A particle with no neighbour at all cannot be part of a fluid: stop and name it.
+  void require_neighbours(const Particles<D>& p) const {
+    for (std::size_t i = 0; i < p.size(); ++i) {
+      require(!list_.of(i).empty(), "particle " + std::to_string(i) + " at " + to_string<D>(p.position[i]) +
+                                        " has no neighbours within 2h = " +
+                                        std::to_string(K::support * p.smoothing_length[i]));
+    }
+  }
+
+  // Join the blocks into one list, in particle order; reverse pairs go after each particle's
+  // own (in the order of the particle that found them), so the list is the same for any
+  // number of threads.
+  void assemble_list(const Box<D>& box) {
+    std::size_t n = 0;
+    for (const auto& b : blocks_) n = std::max(n, b.end);
+    std::vector<std::uint32_t> extra(n, 0);
+    for (const auto& b : blocks_)
+      for (const auto& r : b.reverse) ++extra[r.first];
+    list_.offset_.assign(n + 1, 0);
+    for (const auto& b : blocks_)
+      for (std::size_t i = b.begin; i < b.end; ++i)
+        list_.offset_[i + 1] = b.kept_start[i - b.begin + 1] - b.kept_start[i - b.begin] + extra[i];
+    for (std::size_t i = 0; i < n; ++i) list_.offset_[i + 1] += list_.offset_[i];
+    list_.entries_.resize(list_.offset_[n]);
+    std::vector<std::size_t> fill(n);
+#pragma omp parallel for schedule(static)
+    for (std::size_t t = 0; t < blocks_.size(); ++t) {
+      const Block& b = blocks_[t];
+      for (std::size_t i = b.begin; i < b.end; ++i) {
+        const auto first = b.kept.begin() + static_cast<std::ptrdiff_t>(b.kept_start[i - b.begin]);
+        const auto last = b.kept.begin() + static_cast<std::ptrdiff_t>(b.kept_start[i - b.begin + 1]);
+        std::copy(first, last, list_.entries_.begin() + static_cast<std::ptrdiff_t>(list_.offset_[i]));
+        fill[i] = list_.offset_[i] + static_cast<std::size_t>(last - first);
+      }
+    }
+    for (const auto& b : blocks_)
+      for (const auto& r : b.reverse) list_.entries_[fill[r.first]++] = r.second;
+    for (int a = 0; a < D; ++a) list_.period_[a] = box.periodic[a] ? box.length(a) : 0.0;
+  }
+
+  CellGrid<D> grid_;
+  std::vector<Block> blocks_;
+  NeighbourList<D> list_;
+};
+
+}  // namespace sph

@@ -1,0 +1,95 @@
+// The neighbour list against a brute-force search (after SWIFT's brute-force checks): the same
+// pairs, periodic images included, on random sets in 1D/2D/3D, periodic and open, with a 100x
+// spread of smoothing lengths and periodic boxes narrower than the kernel support.
+#include "sph/neighbours.hpp"
+
+#include <catch2/catch.hpp>
+
+#include <algorithm>
+#include <random>
+#include <set>
+#include <tuple>
+
+namespace {
+
+// Every (i, j, image) with |x_i - x_j - image offset| < 2 max(h_i, h_j), found by trying every
+// image shift that can possibly reach.
+template <int D>
+std::set<std::tuple<std::size_t, std::uint32_t, sph::Image>> brute_force(const sph::Particles<D>& p,
+                                                                        const sph::Box<D>& box) {
+  std::set<std::tuple<std::size_t, std::uint32_t, sph::Image>> pairs;
+  const double hmax = *std::max_element(p.smoothing_length.begin(), p.smoothing_length.end());
+  std::array<int, D> reach{};
+  for (int a = 0; a < D; ++a) reach[a] = box.periodic[a] ? static_cast<int>(std::ceil(4 * hmax / box.length(a))) + 1 : 0;
+  for (std::size_t i = 0; i < p.size(); ++i) {
+    for (std::size_t j = 0; j < p.size(); ++j) {
+      std::array<int, D> k{};
+      for (int a = 0; a < D; ++a) k[a] = -reach[a];
+      while (true) {
+        sph::Vec<D> offset = sph::Vec<D>::Zero();
+        for (int a = 0; a < D; ++a) offset[a] = k[a] * (box.periodic[a] ? box.length(a) : 0.0);
+        const sph::Image image = sph::pack_image<D>(k);
+        const double r = (p.position[i] - p.position[j] - offset).norm();
+        const double reach_ij = 2.0 * std::max(p.smoothing_length[i], p.smoothing_length[j]);
+        if (!(i == j && image == 0) && r < reach_ij) pairs.insert({i, static_cast<std::uint32_t>(j), image});
+        int a = 0;
+        while (a < D && k[a] == reach[a]) { k[a] = -reach[a]; ++a; }
+        if (a == D) break;
+        ++k[a];
+      }
+    }
+  }
+  return pairs;
+}
+
+template <int D>
+void compare_with_brute_force(const sph::Box<D>& box, std::size_t n, double h_spread, unsigned seed) {
+  std::mt19937_64 rng(seed);
+  std::uniform_real_distribution<double> unit(0.0, 1.0);
+  sph::Particles<D> p;
+  for (std::size_t i = 0; i < n; ++i) {
+    sph::Vec<D> x;
+    for (int a = 0; a < D; ++a) x[a] = box.lower[a] + unit(rng) * box.length(a);
+    // h log-uniform over [h0, h0 * spread]
+    const double h = 0.02 * std::pow(h_spread, unit(rng));
+    p.add(x, sph::Vec<D>::Zero(), 1.0, 0.0, h);
+  }
+  sph::NeighbourSearch<D> search;
+  search.update(p, box, sph::SmoothingLengthRule::fixed());
+  std::set<std::tuple<std::size_t, std::uint32_t, sph::Image>> found;
+  std::size_t entries = 0;
+  for (std::size_t i = 0; i < n; ++i) {
+    for (const auto& nb : search.list().of(i)) {
+      found.insert({i, nb.index, nb.image});
+      ++entries;
+    }
+  }
+  const auto expected = brute_force(p, box);
+  CHECK(entries == found.size());  // no pair listed twice
+  CHECK(found == expected);
+  INFO("pairs " << expected.size());
+}
+
+}  // namespace
+
+TEST_CASE("neighbour list equals brute force, open and periodic, 100x spread of h", "[neighbours]") {
+  for (bool periodic : {false, true}) {
+    SECTION(periodic ? "periodic" : "open") {
+      sph::Box<1> b1{sph::Vec<1>(0.0), sph::Vec<1>(1.0), {periodic}};
+      compare_with_brute_force<1>(b1, 300, 100.0, 1);
+      sph::Box<2> b2{sph::Vec<2>(0, 0), sph::Vec<2>(1, 1), {periodic, periodic}};
+      compare_with_brute_force<2>(b2, 400, 100.0, 2);
+      sph::Box<3> b3{sph::Vec<3>(0, 0, 0), sph::Vec<3>(1, 1, 1), {periodic, periodic, periodic}};
+      compare_with_brute_force<3>(b3, 500, 100.0, 3);
+    }
+  }
+}
+
+TEST_CASE("neighbour list in periodic tubes narrower than the kernel support", "[neighbours]") {
+  // A 3D tube 1 x 0.05 x 0.05, periodic across, open along: support up to 2 * 0.02 * 10 = 0.4,
+  // eight times the tube width, so each particle sees many images of its neighbours.
+  sph::Box<3> tube{sph::Vec<3>(0, 0, 0), sph::Vec<3>(1, 0.05, 0.05), {false, true, true}};
+  compare_with_brute_force<3>(tube, 200, 10.0, 4);
+  sph::Box<2> strip{sph::Vec<2>(0, 0), sph::Vec<2>(1, 0.03), {true, true}};
+  compare_with_brute_force<2>(strip, 150, 10.0, 5);
+}
