@@ -170,9 +170,9 @@ class NeighbourSearch {
     bool all_set = true;
     for (std::size_t i = 0; i < n; ++i) {
       const double h = p.smoothing_length[i];
-      if (rule.mode == SmoothingLengthRule::Mode::fixed) {
-        require(std::isfinite(h) && h > 0, "particle " + std::to_string(i) + " has smoothing length " +
-                                               std::to_string(h) + " (fixed h must be positive)");
+      if (rule.mode == SmoothingLengthRule::Mode::fixed && !(std::isfinite(h) && h > 0)) {
+        throw Error("particle " + std::to_string(i) + " has smoothing length " + std::to_string(h) +
+                    " (fixed h must be positive)");
       }
       if (!(std::isfinite(h) && h > 0)) all_set = false;
     }
@@ -251,10 +251,11 @@ class NeighbourSearch {
       }
       const bool bounded = std::none_of(grid_.box().periodic.begin(), grid_.box().periodic.end(),
                                         [](bool b) { return b; });
-      require(!(bounded && radius > 2.0 * grid_extent),
-              "particle " + std::to_string(i) + ": only " + std::to_string(found.size()) +
-                  " other particles in the whole set, cannot reach " +
-                  std::to_string(rule.neighbours) + " neighbours");
+      if (bounded && radius > 2.0 * grid_extent) {
+        throw Error("particle " + std::to_string(i) + ": only " + std::to_string(found.size()) +
+                    " other particles in the whole set, cannot reach " + std::to_string(rule.neighbours) +
+                    " neighbours");
+      }
       radius *= 1.5;
     }
     throw Error("particle " + std::to_string(i) + " at " + to_string<D>(p.position[i]) +
@@ -309,7 +310,7 @@ class NeighbourSearch {
       // f(h) = sum(h) - target * ... with rho h^D = sum: solve sum(h) = target.
       const double f = sum - target;
       double step = dsum > 0 ? f / dsum : 0.0;
-      if (!(dsum > 0) || std::abs(step) > 0.5 * h_new) step = f > 0 ? -0.3 * h_new : 0.3 * h_new;
+      if (!(dsum > 0) || std::abs(step) > 0.5 * h_new) step = f > 0 ? 0.3 * h_new : -0.3 * h_new;
       h_new = h_new - step;
       if (std::abs(step) < rule.density_tolerance * h_new) {
         h = h_new;
@@ -347,9 +348,10 @@ class NeighbourSearch {
   // A particle with no neighbour at all cannot be part of a fluid: stop and name it.
   void require_neighbours(const Particles<D>& p) const {
     for (std::size_t i = 0; i < p.size(); ++i) {
-      require(!list_.of(i).empty(), "particle " + std::to_string(i) + " at " + to_string<D>(p.position[i]) +
-                                        " has no neighbours within 2h = " +
-                                        std::to_string(K::support * p.smoothing_length[i]));
+      if (list_.of(i).empty()) {
+        throw Error("particle " + std::to_string(i) + " at " + to_string<D>(p.position[i]) +
+                    " has no neighbours within 2h = " + std::to_string(K::support * p.smoothing_length[i]));
+      }
     }
   }
 

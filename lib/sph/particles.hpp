@@ -39,8 +39,7 @@ struct Particles {
 
   // --- written by the force pass ------------------------------------------------------------
   std::vector<Vec<D>> acceleration;     ///< dv_i/dt
-  std::vector<double> energy_rate;      ///< du_i/dt
-  std::vector<double> max_signal;       ///< per-particle term of the time-step limit (eq 7's denominator)
+  std::vector<double> energy_rate;      ///< du_i/dt (gases that evolve their energy)
 
   std::size_t size() const { return position.size(); }
 
@@ -57,7 +56,6 @@ struct Particles {
     sound_speed.resize(n, 0.0);
     acceleration.resize(n, Vec<D>::Zero());
     energy_rate.resize(n, 0.0);
-    max_signal.resize(n, 0.0);
   }
 
   /// Append one particle.
@@ -76,13 +74,15 @@ struct Particles {
   void validate() const {
     require(size() > 0, "particles: the set is empty");
     for (std::size_t i = 0; i < size(); ++i) {
+      const bool good = position[i].allFinite() && velocity[i].allFinite() && std::isfinite(mass[i]) &&
+                        mass[i] > 0 && std::isfinite(internal_energy[i]) && internal_energy[i] >= 0;
+      if (good) continue;
       const std::string who = "particle " + std::to_string(i);
       require(position[i].allFinite(), who + " has a non-finite position " + to_string<D>(position[i]));
       require(velocity[i].allFinite(), who + " has a non-finite velocity " + to_string<D>(velocity[i]));
       require(std::isfinite(mass[i]) && mass[i] > 0,
               who + " has mass " + std::to_string(mass[i]) + " (must be positive and finite)");
-      require(std::isfinite(internal_energy[i]) && internal_energy[i] >= 0,
-              who + " has internal energy " + std::to_string(internal_energy[i]) +
+      throw Error(who + " has internal energy " + std::to_string(internal_energy[i]) +
                   " (must be non-negative and finite)");
     }
   }

@@ -1,0 +1,58 @@
+#pragma once
+/// \file
+/// \brief Equations of state: pressure and sound speed from density and internal energy.
+///
+/// Each equation of state is a small value type with `pressure(rho, u)`, `sound_speed(rho, u)`
+/// and `evolves_energy` (whether the energy equation is integrated at all: a polytropic or
+/// isothermal gas has no use for du/dt, and a scene with one does not compute it).
+
+#include "sph/error.hpp"
+
+#include <cmath>
+#include <string>
+
+namespace sph {
+
+/// Ideal gas, \f$ P = (\gamma - 1)\rho u \f$, \f$ c = \sqrt{\gamma P/\rho} \f$ (Selhammar 1997 after eq 6).
+struct IdealGas {
+  double gamma = 5.0 / 3.0;
+  static constexpr bool evolves_energy = true;
+  static constexpr const char* name = "ideal gas";
+
+  explicit IdealGas(double g = 5.0 / 3.0) : gamma(g) {
+    require(std::isfinite(g) && g > 1.0, "ideal gas: the adiabatic index gamma must exceed 1 (got " + std::to_string(g) + ")");
+  }
+  double pressure(double rho, double u) const { return (gamma - 1.0) * rho * u; }
+  double sound_speed(double rho, double u) const { return std::sqrt(gamma * pressure(rho, u) / rho); }
+  /// u from pressure and density, for setting up states given as (rho, P).
+  double internal_energy(double rho, double P) const { return P / ((gamma - 1.0) * rho); }
+};
+
+/// Polytropic gas, \f$ P = K\rho^\gamma \f$: pressure depends on density only.
+struct Polytropic {
+  double K = 1.0, gamma = 5.0 / 3.0;
+  static constexpr bool evolves_energy = false;
+  static constexpr const char* name = "polytropic";
+
+  Polytropic(double k, double g) : K(k), gamma(g) {
+    require(std::isfinite(k) && k > 0, "polytropic gas: K must be positive");
+    require(std::isfinite(g) && g >= 1.0, "polytropic gas: gamma must be at least 1");
+  }
+  double pressure(double rho, double) const { return K * std::pow(rho, gamma); }
+  double sound_speed(double rho, double u) const { return std::sqrt(gamma * pressure(rho, u) / rho); }
+};
+
+/// Isothermal gas, \f$ P = c^2 \rho \f$.
+struct Isothermal {
+  double c = 1.0;
+  static constexpr bool evolves_energy = false;
+  static constexpr const char* name = "isothermal";
+
+  explicit Isothermal(double sound) : c(sound) {
+    require(std::isfinite(sound) && sound > 0, "isothermal gas: the sound speed must be positive");
+  }
+  double pressure(double rho, double) const { return c * c * rho; }
+  double sound_speed(double, double) const { return c; }
+};
+
+}  // namespace sph
