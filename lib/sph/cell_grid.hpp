@@ -86,37 +86,28 @@ class CellGrid {
       }
     }
     const double radius2 = radius * radius;
+    // Cells are numbered x-fastest, so for fixed higher coordinates a run of x cells is one
+    // contiguous range of sorted particles.  We walk the higher axes with an odometer and
+    // each x run in as few pieces as its periodic wrapping allows.
     std::array<int, D> raw = first;
     while (true) {
-      // Visit one cell: wrap its raw coordinates and remember the periodic image.
-      int cell = 0, stride = 1;
+      int row = 0, stride = cells_[0];
       std::array<int, D> shift{};
       Vec<D> offset = Vec<D>::Zero();
-      for (int a = 0; a < D; ++a) {
-        int c = raw[a];
-        if (box_.periodic[a]) {
-          const int wrapped = ((c % cells_[a]) + cells_[a]) % cells_[a];
-          shift[a] = (c - wrapped) / cells_[a];
-          offset[a] = shift[a] * box_.length(a);
-          c = wrapped;
-        }
-        cell += c * stride;
+      for (int a = 1; a < D; ++a) {
+        const int c = wrap_axis(raw[a], a, shift[a]);
+        offset[a] = shift[a] * box_.length(a);
+        row += c * stride;
         stride *= cells_[a];
       }
-      const Image image = pack_image<D>(shift);
-      const Vec<D> shifted_point = point - offset;
-      for (std::uint32_t p = cell_start_[cell]; p < cell_start_[cell + 1]; ++p) {
-        const Vec<D> r = shifted_point - sorted_position_[p];
-        const double r2 = r.squaredNorm();
-        if (r2 < radius2) f(sorted_index_[p], image, r, r2);
-      }
-      // Advance the odometer over the D cell ranges.
-      int a = 0;
+      for_each_in_x_run(point, radius2, first[0], last[0], row, shift, offset, f);
+      // Advance the odometer over the higher axes.
+      int a = 1;
       while (a < D && raw[a] == last[a]) {
         raw[a] = first[a];
         ++a;
       }
-      if (a == D) break;
+      if (a >= D) break;
       ++raw[a];
     }
   }
@@ -142,6 +133,37 @@ class CellGrid {
   const Box<D>& box() const { return box_; }
 
  private:
+  // Wrap a raw cell coordinate on axis a; the periodic image it lies in goes to `shift`.
+  int wrap_axis(int c, int a, int& shift) const {
+    shift = 0;
+    if (!box_.periodic[a]) return c;
+    const int n = cells_[a];
+    const int wrapped = ((c % n) + n) % n;
+    shift = (c - wrapped) / n;
+    return wrapped;
+  }
+
+  // The x cells first..last of one row, split where the periodic wrap changes the image.
+  template <class F>
+  void for_each_in_x_run(const Vec<D>& point, double radius2, int first, int last, int row,
+                         std::array<int, D> shift, Vec<D> offset, F& f) const {
+    int c = first;
+    while (c <= last) {
+      const int begin = wrap_axis(c, 0, shift[0]);
+      const int end = std::min(cells_[0] - 1, begin + (last - c));
+      offset[0] = shift[0] * box_.length(0);
+      const Image image = pack_image<D>(shift);
+      const Vec<D> shifted_point = point - offset;
+      const std::uint32_t p_end = cell_start_[row + end + 1];
+      for (std::uint32_t p = cell_start_[row + begin]; p < p_end; ++p) {
+        const Vec<D> r = shifted_point - sorted_position_[p];
+        const double r2 = r.squaredNorm();
+        if (r2 < radius2) f(sorted_index_[p], image, r, r2);
+      }
+      c += end - begin + 1;
+    }
+  }
+
   // Choose origin, number of cells and cell size on each axis.
   void set_geometry(const std::vector<Vec<D>>& x, double target) {
     Vec<D> lo = x[0], hi = x[0];

@@ -1,0 +1,27 @@
+// The benchmark program: what one step of each kind costs on this machine, with 1 thread and
+// with all threads.  Run it as `build/bench/bench` (or `--quick` for a smoke run).  The numbers
+// go in the issue notes and the chapters' text; timed tests are not used for this, since test
+// machines are shared and noisy.
+#include "bench_hydro.hpp"
+#if __has_include("bench_neighbours.hpp")
+#include "bench_neighbours.hpp"
+#define SPH_BENCH_NEIGHBOURS 1
+#endif
+
+#include <CLI/CLI.hpp>
+#include <omp.h>
+
+#include <cstdio>
+
+int main(int argc, char** argv) {
+  CLI::App app{"SPH course benchmarks: neighbour search and hydrodynamic steps in 1D/2D/3D"};
+  bool quick = false;
+  app.add_flag("--quick", quick, "small sizes, a few seconds (for smoke tests)");
+  CLI11_PARSE(app, argc, argv);
+  std::printf("SPH course benchmark: %d hardware threads\n", omp_get_num_procs());
+#ifdef SPH_BENCH_NEIGHBOURS
+  bench::bench_neighbours(quick);
+#endif
+  bench::bench_hydro(quick);
+  return 0;
+}

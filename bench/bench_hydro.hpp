@@ -1,0 +1,94 @@
+#pragma once
+// The cost of one hydrodynamic step: Sod's tube in 1D, 2D and 3D at fixed N with the
+// Monaghan-Gingold viscosity (alpha = 1, beta = 2), timed over a fixed number of steps after a
+// warm-up, with 1 thread and with all threads.  Reported as microseconds per particle-step and
+// nanoseconds per neighbour pair (an (i, j) entry of the neighbour list, each pair counted
+// from both sides, as the gather passes visit it).
+
+#include "sph/setups/shock_tube.hpp"
+#include "sph/simulation.hpp"
+#include "sph/viscosity/monaghan_gingold_1983.hpp"
+
+#include <omp.h>
+
+#include <chrono>
+#include <cstdio>
+#include <string>
+
+namespace bench {
+
+struct StepCost {
+  std::size_t particles = 0;
+  double neighbours = 0;  // mean list entries per particle
+  double us_per_particle_step = 0;
+  double ns_per_pair = 0;
+  bool identical_to_one_thread = true;
+};
+
+// Run `steps` steps of a Sod tube in D dimensions with the given threads.
+template <int D>
+StepCost time_sod_steps(double left_spacing, const sph::SmoothingLengthRule& rule, int threads, int steps,
+                        sph::Particles<D>* final_state = nullptr) {
+  omp_set_num_threads(threads);
+  sph::ShockTubeSetup setup = sph::ShockTubeSetup::sod();
+  setup.left_spacing = left_spacing;
+  sph::Settings settings;
+  settings.smoothing = rule;
+  const auto tube = sph::make_shock_tube<D>(setup, rule);
+  using Hydro = sph::Physics<D, sph::Kernel<D>, sph::IdealGas, sph::MonaghanGingold1983>;
+  sph::Simulation<Hydro> sim(tube.particles, tube.box, sph::IdealGas(setup.gamma), {1.0, 2.0}, settings);
+  for (int k = 0; k < 3; ++k) sim.step();  // warm-up: caches, allocations
+  const auto start = std::chrono::steady_clock::now();
+  double entries = 0;
+  for (int k = 0; k < steps; ++k) {
+    sim.step();
+    entries += static_cast<double>(sim.neighbours().entries());
+  }
+  const double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+  StepCost cost;
+  cost.particles = sim.particles().size();
+  cost.neighbours = entries / steps / static_cast<double>(cost.particles);
+  cost.us_per_particle_step = 1e6 * seconds / steps / static_cast<double>(cost.particles);
+  cost.ns_per_pair = 1e9 * seconds / entries;
+  if (final_state) *final_state = sim.particles();
+  return cost;
+}
+
+template <int D>
+bool same_state(const sph::Particles<D>& a, const sph::Particles<D>& b) {
+  for (std::size_t i = 0; i < a.size(); ++i) {
+    if (a.position[i] != b.position[i] || a.velocity[i] != b.velocity[i] || a.internal_energy[i] != b.internal_energy[i])
+      return false;
+  }
+  return a.size() == b.size();
+}
+
+// One line of the table: 1 thread, then all threads, and whether the two agree bitwise.
+template <int D>
+void report_sod(const char* label, double left_spacing, const sph::SmoothingLengthRule& rule, int steps,
+                const char* reference) {
+  const int threads = omp_get_num_procs();
+  sph::Particles<D> one, all;
+  const StepCost serial = time_sod_steps<D>(left_spacing, rule, 1, steps, &one);
+  const StepCost parallel = time_sod_steps<D>(left_spacing, rule, threads, steps, &all);
+  std::printf("%-4s %8zu %7.1f %10.3f %10.3f %9.1f %9.1f   %-9s %s\n", label, serial.particles, serial.neighbours,
+              serial.us_per_particle_step, parallel.us_per_particle_step, serial.ns_per_pair, parallel.ns_per_pair,
+              same_state(one, all) ? "yes" : "NO", reference);
+}
+
+inline void bench_hydro(bool quick) {
+  const int steps = quick ? 5 : 40;
+  const int threads = omp_get_num_procs();
+  std::printf("\nHydrodynamic step, Sod tube with Monaghan-Gingold AV (alpha 1, beta 2), %d steps timed\n", steps);
+  std::printf("%-4s %8s %7s %10s %10s %9s %9s   %-9s %s\n", "dim", "N", "ngb", "us/p-step", "us/p-step", "ns/pair",
+              "ns/pair", "bitwise", "reference (mature code, 1 thread)");
+  std::printf("%-4s %8s %7s %10s %10s %9s %9s   %-9s\n", "", "", "", "1 thread", (std::to_string(threads) + " thr").c_str(),
+              "1 thread", (std::to_string(threads) + " thr").c_str(), "1 = N thr");
+  report_sod<1>("1D", quick ? 1.0 / 800 : 1.0 / 25600, sph::SmoothingLengthRule::from_density(4.0), steps,
+                "0.38 us/p-step; target <= 0.15 (2 threads)");
+  report_sod<2>("2D", quick ? 1.0 / 80 : 1.0 / 320, sph::SmoothingLengthRule::neighbour_number(20, 2), steps, "");
+  report_sod<3>("3D", quick ? 1.0 / 40 : 1.0 / 160, sph::SmoothingLengthRule::neighbour_number(60, 3), steps,
+                "14 us/p-step at ~55 ngb; target <= 0.5 (2 threads)");
+}
+
+}  // namespace bench
