@@ -14,6 +14,7 @@
 
 #include "sph/kernel.hpp"
 #include "sph/neighbours.hpp"
+#include "sph/parallel.hpp"
 #include "sph/particles.hpp"
 
 #include <string>
@@ -55,8 +56,9 @@ double density_of(const Particles<D>& p, const NeighbourList<D>& list, std::size
 template <int D, class K = Kernel<D>>
 void compute_density(Particles<D>& p, const NeighbourList<D>& list, DensityForm form = DensityForm::selhammar()) {
   const std::size_t n = p.size();
+  require_positive_masses(p, "density");
   long bad = -1;
-#pragma omp parallel for schedule(static)
+#pragma omp parallel for schedule(static) if (n >= parallel_threshold)
   for (std::size_t i = 0; i < n; ++i) {
     const double rho = density_of<D, K>(p, list, i, form);
     p.density[i] = rho;

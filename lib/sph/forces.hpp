@@ -20,6 +20,7 @@
 
 #include "sph/kernel.hpp"
 #include "sph/neighbours.hpp"
+#include "sph/parallel.hpp"
 #include "sph/pair.hpp"
 #include "sph/particles.hpp"
 #include "sph/viscosity/none.hpp"
@@ -74,7 +75,7 @@ void compute_forces(Particles<D>& p, const NeighbourList<D>& list, [[maybe_unuse
   const std::size_t n = p.size();
   scratch.max_mu.resize(n);
   const double support2 = K::support * K::support;
-#pragma omp parallel for schedule(static)
+#pragma omp parallel for schedule(static) if (n >= parallel_threshold)
   for (std::size_t i = 0; i < n; ++i) {
     Vec<D> acceleration = Vec<D>::Zero();
     double energy_rate = 0, max_mu = 0;

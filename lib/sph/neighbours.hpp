@@ -15,7 +15,9 @@
 ///  - **neighbour number**: h_i such that particle i has N neighbours within 2h_i, within a
 ///    tolerance of ±ΔN (Selhammar: 64 in 3D; Watkins: ±10 %).  When the count falls outside the
 ///    tolerance we place 2h_i half-way between the N-th and (N+1)-th nearest neighbour, so the
-///    count becomes N exactly -- no iteration is needed;
+///    count becomes N exactly -- no iteration is needed.  On a lattice the N-th and (N+1)-th
+///    neighbour can lie on one shell; then 2h goes into the gap inside or outside that shell,
+///    whichever count is nearer N (the count is then the nearest achievable, not N);
 ///  - **density**: \f$ h_i = \left(\frac{N m_i}{V_D 2^D \rho_i}\right)^{1/D} \f$ with the
 ///    gather density \f$ \rho_i(h_i) \f$, solved per particle by Newton iteration (Watkins
 ///    eqs A6-A7; \f$ V_D \f$ is the volume of the unit ball, so N is the expected neighbour
@@ -28,6 +30,7 @@
 #include "sph/dimension.hpp"
 #include "sph/error.hpp"
 #include "sph/kernel.hpp"
+#include "sph/parallel.hpp"
 #include "sph/particles.hpp"
 
 #include <omp.h>
@@ -93,6 +96,19 @@ class NeighbourList {
   Vec<D> period_ = Vec<D>::Zero();
 };
 
+/// Throw sph::Error naming the first particle whose mass is not positive and finite.  A zero or
+/// negative mass would not stop the sums: it would silently lower the neighbours' densities (and
+/// make the density rule for h chase a negative target), so the passes that use masses check.
+template <int D>
+void require_positive_masses(const Particles<D>& p, const char* pass) {
+  for (std::size_t i = 0; i < p.size(); ++i) {
+    if (!(std::isfinite(p.mass[i]) && p.mass[i] > 0)) {
+      throw Error(std::string(pass) + ": particle " + std::to_string(i) + " at " + to_string<D>(p.position[i]) +
+                  " has mass " + std::to_string(p.mass[i]) + " (must be positive and finite)");
+    }
+  }
+}
+
 /// Updates smoothing lengths by a rule and builds the neighbour list (the first pass of every
 /// step).  Keep one instance per scene: it reuses its buffers from step to step.
 template <int D, class K = Kernel<D>>
@@ -105,15 +121,18 @@ class NeighbourSearch {
     require(n > 0, "neighbour search: no particles");
     require(n < (std::size_t{1} << 31), "neighbour search: too many particles");
     validate_rule(rule);
+    if (rule.mode == SmoothingLengthRule::Mode::density) require_positive_masses(p, "smoothing length from density");
     initial_guess(p, box, rule);
     grid_.build(p.position, box, cell_size(p.smoothing_length));
-    const int threads = omp_get_max_threads();
+    const int threads = n < parallel_threshold ? 1 : omp_get_max_threads();
     blocks_.resize(static_cast<std::size_t>(threads));
     std::string error;
+    std::size_t team = 1;
 #pragma omp parallel num_threads(threads)
     {
       const auto t = static_cast<std::size_t>(omp_get_thread_num());
       const std::size_t nt = static_cast<std::size_t>(omp_get_num_threads());
+      if (t == 0) team = nt;
       Block& block = blocks_[t];
       block.begin = n * t / nt;
       block.end = n * (t + 1) / nt;
@@ -127,6 +146,7 @@ class NeighbourSearch {
       if (error.empty()) keep_neighbours(p, block);
     }
     if (!error.empty()) throw Error(error);
+    blocks_.resize(team);  // the runtime may have given fewer threads than asked for
     assemble_list(box);
     require_neighbours(p);
   }
@@ -282,7 +302,30 @@ class NeighbourSearch {
     std::nth_element(found.begin(), found.begin() + static_cast<std::ptrdiff_t>(n - 1), found.end(), by_distance);
     const double rn = std::sqrt(found[n - 1].r2);
     const double rn1 = std::sqrt(std::min_element(found.begin() + static_cast<std::ptrdiff_t>(n), found.end(), by_distance)->r2);
-    h = 0.5 * (rn + rn1) / K::support;
+    // Distances that differ by round-off only form one shell (a lattice): no 2h separates them.
+    const double tie = 1e-10 * rn1;
+    if (rn1 - rn > tie) {
+      h = 0.5 * (rn + rn1) / K::support;
+      return true;
+    }
+    return settle_on_shell(rule.neighbours, rn, tie, found, h);
+  }
+
+  // The N-th and (N+1)-th neighbours lie on one shell (equal distances, as on a lattice, or
+  // coincident particles at r = 0).  No radius gives exactly N; put 2h in the gap just inside or
+  // just outside the shell, whichever count is nearer N (outside on a tie, and always outside a
+  // shell at r = 0, so h > 0).  False when the candidates end at the shell (widen the search).
+  static bool settle_on_shell(double target, double shell, double tie, std::vector<Candidate>& found, double& h) {
+    std::sort(found.begin(), found.end(), [](const Candidate& a, const Candidate& b) { return a.r2 < b.r2; });
+    std::size_t inside = 0, through = 0;  // counts with r below the shell, and up to its outer edge
+    while (inside < found.size() && std::sqrt(found[inside].r2) < shell - tie) ++inside;
+    through = inside;
+    while (through < found.size() && std::sqrt(found[through].r2) <= shell + tie) ++through;
+    if (through == found.size()) return false;
+    const bool take_inside = inside > 0 && std::abs(static_cast<double>(inside) - target) <
+                                               std::abs(static_cast<double>(through) - target);
+    const double r_gap = take_inside ? std::sqrt(found[inside - 1].r2) : std::sqrt(found[through].r2);
+    h = 0.5 * (shell + r_gap) / K::support;
     return true;
   }
 
@@ -371,7 +414,7 @@ class NeighbourSearch {
     for (std::size_t i = 0; i < n; ++i) list_.offset_[i + 1] += list_.offset_[i];
     list_.entries_.resize(list_.offset_[n]);
     std::vector<std::size_t> fill(n);
-#pragma omp parallel for schedule(static)
+#pragma omp parallel for schedule(static) if (blocks_.size() > 1)
     for (std::size_t t = 0; t < blocks_.size(); ++t) {
       const Block& b = blocks_[t];
       for (std::size_t i = b.begin; i < b.end; ++i) {

@@ -37,6 +37,7 @@
 #include "sph/forces.hpp"
 #include "sph/kernel.hpp"
 #include "sph/neighbours.hpp"
+#include "sph/parallel.hpp"
 #include "sph/particles.hpp"
 #include "sph/viscosity/none.hpp"
 
@@ -109,9 +110,10 @@ class Simulation {
   /// P_i, c_i and P_i/rho_i^2 from rho_i and u_i.
   void equation_of_state() {
     auto& p = particles_;
-    scratch_.p_over_rho2.resize(p.size());
-#pragma omp parallel for schedule(static)
-    for (std::size_t i = 0; i < p.size(); ++i) {
+    const std::size_t n = p.size();
+    scratch_.p_over_rho2.resize(n);
+#pragma omp parallel for schedule(static) if (n >= parallel_threshold)
+    for (std::size_t i = 0; i < n; ++i) {
       p.pressure[i] = eos_.pressure(p.density[i], p.internal_energy[i]);
       p.sound_speed[i] = eos_.sound_speed(p.density[i], p.internal_energy[i]);
       scratch_.p_over_rho2[i] = p.pressure[i] / (p.density[i] * p.density[i]);
@@ -196,8 +198,9 @@ class Simulation {
  private:
   void kick(double dt) {
     auto& p = particles_;
-#pragma omp parallel for schedule(static)
-    for (std::size_t i = 0; i < p.size(); ++i) {
+    const std::size_t n = p.size();
+#pragma omp parallel for schedule(static) if (n >= parallel_threshold)
+    for (std::size_t i = 0; i < n; ++i) {
       p.velocity[i] += dt * p.acceleration[i];
       if constexpr (evolve_energy) p.internal_energy[i] += dt * p.energy_rate[i];
     }
@@ -205,8 +208,9 @@ class Simulation {
 
   void drift(double dt) {
     auto& p = particles_;
-#pragma omp parallel for schedule(static)
-    for (std::size_t i = 0; i < p.size(); ++i) p.position[i] = box_.wrap(p.position[i] + dt * p.velocity[i]);
+    const std::size_t n = p.size();
+#pragma omp parallel for schedule(static) if (n >= parallel_threshold)
+    for (std::size_t i = 0; i < n; ++i) p.position[i] = box_.wrap(p.position[i] + dt * p.velocity[i]);
   }
 
   // A NaN or infinity must never travel on: stop and name the particle.

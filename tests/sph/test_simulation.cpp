@@ -1,6 +1,7 @@
 // Conservation and determinism of the hydrodynamic step (after SWIFT's testSymmetry.c and
 // Phantom's test_sedov.f90): momentum to round-off, energy to a stated tolerance, bitwise
 // identical results for 1 and 2 threads, clear errors for bad input.
+#include "sph/parallel.hpp"
 #include "sph/simulation.hpp"
 #include "sph/viscosity/monaghan_gingold_1983.hpp"
 
@@ -83,12 +84,14 @@ TEST_CASE("results are bitwise identical with 1 and 2 threads", "[simulation]") 
     omp_set_num_threads(threads);
     sph::Settings settings;
     settings.smoothing = sph::SmoothingLengthRule::from_density(50);
-    sph::Simulation<Hydro3> sim(stirred_box(8, 3), unit_box(), sph::IdealGas(1.4), {1.0, 2.0}, settings);
-    sim.run_until(0.02);
+    // 17^3 = 4913 particles: above sph::parallel_threshold, so two threads really share the work.
+    sph::Simulation<Hydro3> sim(stirred_box(17, 3), unit_box(), sph::IdealGas(1.4), {1.0, 2.0}, settings);
+    for (int k = 0; k < 3; ++k) sim.step();
     omp_set_num_threads(saved);
     return sim.particles();
   };
   const auto one = run(1), two = run(2);
+  REQUIRE(one.size() >= sph::parallel_threshold);
   bool identical = true;
   for (std::size_t i = 0; i < one.size(); ++i) {
     identical = identical && one.position[i] == two.position[i] && one.velocity[i] == two.velocity[i] &&

@@ -21,7 +21,9 @@
 #include "sph/eos.hpp"
 #include "sph/initial_conditions.hpp"
 #include "sph/neighbours.hpp"
+#include "sph/norms.hpp"
 #include "sph/riemann.hpp"
+#include "sph/convergence.hpp"
 
 #include <cmath>
 #include <string>
@@ -124,15 +126,20 @@ ShockTube<D> make_shock_tube(const ShockTubeSetup& s, const SmoothingLengthRule&
   for (int sweep = 0; sweep < 4; ++sweep) {
     search.update(p, tube.box, rule);
     compute_density<D, K>(p, search.list(), form);
-    double h_max = 0;
-    for (double h : p.smoothing_length) h_max = std::max(h_max, h);
-    const double margin = 3.0 * K::support * h_max;
+    // Each side's interior: farther than 1.5 kernel supports (of that side's largest h) from
+    // both interfaces.
+    double h_max[2] = {0, 0};
+    for (std::size_t i = 0; i < p.size(); ++i) {
+      const int side = p.position[i][0] < 0 ? 0 : 1;
+      h_max[side] = std::max(h_max[side], p.smoothing_length[i]);
+    }
     double sum[2] = {0, 0};
     int count[2] = {0, 0};
     for (std::size_t i = 0; i < p.size(); ++i) {
       const double x = p.position[i][0];
-      if (std::abs(x) < margin || s.half_length - std::abs(x) < margin) continue;
       const int side = x < 0 ? 0 : 1;
+      const double margin = 1.5 * K::support * h_max[side];
+      if (std::abs(x) < margin || s.half_length - std::abs(x) < margin) continue;
       sum[side] += p.density[i];
       ++count[side];
     }
@@ -141,6 +148,37 @@ ShockTube<D> make_shock_tube(const ShockTubeSetup& s, const SmoothingLengthRule&
     for (std::size_t i = 0; i < p.size(); ++i) p.mass[i] *= scale[p.position[i][0] < 0 ? 0 : 1];
   }
   return tube;
+}
+
+/// The window in which a shock tube is compared with its exact solution: |x| <= 0.5, well
+/// inside the waves of the far interface for t <= 0.2.
+inline Selection shock_tube_window() { return Selection::range(-0.5, 0.5); }
+
+/// The x-velocity of every particle (the quantity the exact solution knows).
+template <int D>
+std::vector<double> x_velocity(const Particles<D>& p) {
+  std::vector<double> v(p.size());
+  for (std::size_t i = 0; i < p.size(); ++i) v[i] = p.velocity[i][0];
+  return v;
+}
+
+/// L1, L2, Linf of rho, v_x and P against the exact solution at time t, in the window.
+template <int D>
+std::vector<ErrorNorms> shock_tube_errors(const Particles<D>& p, const RiemannSolution& exact, double t,
+                                          const Selection& window = shock_tube_window()) {
+  auto at = [&](const Vec<D>& x) { return exact.sample(x[0], t); };
+  return {error_norms<D>("rho", p.position, p.density, [&](const Vec<D>& x) { return at(x).density; }, window),
+          error_norms<D>("v", p.position, x_velocity(p), [&](const Vec<D>& x) { return at(x).velocity; }, window),
+          error_norms<D>("P", p.position, p.pressure, [&](const Vec<D>& x) { return at(x).pressure; }, window)};
+}
+
+/// The same as a Measurement for an error-against-run-time study: L1(rho), L1(v), L1(P).
+template <int D>
+Measurement shock_tube_measurement(const Particles<D>& p, const RiemannSolution& exact, double t, double spacing) {
+  Measurement m;
+  m.resolution = spacing;
+  for (const ErrorNorms& e : shock_tube_errors(p, exact, t)) m.errors.push_back({"L1(" + e.quantity + ")", e.L1});
+  return m;
 }
 
 }  // namespace sph
