@@ -137,10 +137,18 @@ class CellGrid {
   int wrap_axis(int c, int a, int& shift) const {
     shift = 0;
     if (!box_.periodic[a]) return c;
+    // A query spans a few cells past either face: add or subtract whole periods (cheaper than
+    // an integer division, which this loop would otherwise do for every row).
     const int n = cells_[a];
-    const int wrapped = ((c % n) + n) % n;
-    shift = (c - wrapped) / n;
-    return wrapped;
+    while (c < 0) {
+      c += n;
+      --shift;
+    }
+    while (c >= n) {
+      c -= n;
+      ++shift;
+    }
+    return c;
   }
 
   // The x cells first..last of one row, split where the periodic wrap changes the image.
@@ -154,13 +162,32 @@ class CellGrid {
       offset[0] = shift[0] * box_.length(0);
       const Image image = pack_image<D>(shift);
       const Vec<D> shifted_point = point - offset;
-      const std::uint32_t p_end = cell_start_[row + end + 1];
-      for (std::uint32_t p = cell_start_[row + begin]; p < p_end; ++p) {
-        const Vec<D> r = shifted_point - sorted_position_[p];
-        const double r2 = r.squaredNorm();
-        if (r2 < radius2) f(sorted_index_[p], image, r, r2);
-      }
+      scan_range(cell_start_[row + begin], cell_start_[row + end + 1], shifted_point, radius2, image, f);
       c += end - begin + 1;
+    }
+  }
+
+  // The particles sorted_[first..last) within the radius of the point.  The distances are
+  // computed in blocks from per-axis coordinate arrays in a branch-free loop the compiler
+  // vectorises; only the hits go to the caller.
+  template <class F>
+  void scan_range(std::uint32_t first, std::uint32_t last, const Vec<D>& point, double radius2, Image image,
+                  F& f) const {
+    constexpr std::uint32_t block = 32;
+    double r2[block];
+    for (std::uint32_t start = first; start < last; start += block) {
+      const std::uint32_t count = std::min(block, last - start);
+      for (std::uint32_t k = 0; k < count; ++k) {
+        double sum = 0;
+        for (int a = 0; a < D; ++a) {
+          const double d = point[a] - sorted_coordinate_[a][start + k];
+          sum += d * d;
+        }
+        r2[k] = sum;
+      }
+      for (std::uint32_t k = 0; k < count; ++k) {
+        if (r2[k] < radius2) f(sorted_index_[start + k], image, Vec<D>(point - sorted_position_[start + k]), r2[k]);
+      }
     }
   }
 
@@ -223,10 +250,12 @@ class CellGrid {
     for (int c = 0; c < total; ++c) cell_start_[c + 1] += cell_start_[c];
     sorted_position_.resize(x.size());
     sorted_index_.resize(x.size());
+    for (auto& coordinate : sorted_coordinate_) coordinate.resize(x.size());
     std::vector<std::uint32_t> fill(cell_start_.begin(), cell_start_.end() - 1);
     for (std::size_t i = 0; i < x.size(); ++i) {
       const std::uint32_t p = fill[cell_of[i]]++;
       sorted_position_[p] = x[i];
+      for (int a = 0; a < D; ++a) sorted_coordinate_[a][p] = x[i][a];
       sorted_index_[p] = static_cast<std::uint32_t>(i);
     }
   }
@@ -237,6 +266,7 @@ class CellGrid {
   std::array<int, D> cells_{};
   std::vector<std::uint32_t> cell_start_;
   std::vector<Vec<D>> sorted_position_;
+  std::array<std::vector<double>, D> sorted_coordinate_;  // the same, one array per axis
   std::vector<std::uint32_t> sorted_index_;
 };
 

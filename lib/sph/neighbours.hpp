@@ -254,7 +254,7 @@ class NeighbourSearch {
                        std::vector<Candidate>& found) const {
     double& h = p.smoothing_length[i];
     double radius = K::support * h * (1.0 + search_margin);
-    const double grid_extent = grid_.extent();
+    const double grid_extent = std::max(grid_.extent(), K::support * h);
     for (int attempt = 0; attempt < 64; ++attempt) {
       gather(p, i, radius, found);
       const bool settled = [&] {
@@ -269,12 +269,12 @@ class NeighbourSearch {
         p.neighbour_count[i] = count_within(found, K::support * h);
         return;
       }
-      const bool bounded = std::none_of(grid_.box().periodic.begin(), grid_.box().periodic.end(),
-                                        [](bool b) { return b; });
-      if (bounded && radius > 2.0 * grid_extent) {
+      // Past a few times the grid's extent a wider search finds nothing new on open axes, and
+      // only more periodic images on periodic ones: the target cannot be met sensibly.
+      if (radius > 4.0 * grid_extent) {
         throw Error("particle " + std::to_string(i) + ": only " + std::to_string(found.size()) +
-                    " other particles in the whole set, cannot reach " + std::to_string(rule.neighbours) +
-                    " neighbours");
+                    " other particles (periodic images included) within " + std::to_string(radius) +
+                    ", cannot reach " + std::to_string(rule.neighbours) + " neighbours");
       }
       radius *= 1.5;
     }

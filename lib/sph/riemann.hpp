@@ -158,6 +158,10 @@ inline std::string number(double x) {
 /// \endcode
 class RiemannSolution {
  public:
+  /// A placeholder to assign a real problem to later: uniform gas at rest, rho = P = 1,
+  /// gamma = 1.4, so p* = 1, u* = 0 and both waves have zero strength.
+  RiemannSolution() : RiemannSolution({1.0, 0.0, 1.0}, {1.0, 0.0, 1.0}, 1.4) {}
+
   /// Solves the problem; throws sph::Error for bad input, for a vacuum that the data would
   /// generate, and if the iteration does not converge.
   RiemannSolution(GasState left, GasState right, double gamma, double interface_x = 0.0,
@@ -222,8 +226,8 @@ class RiemannSolution {
   }
 
   /// The wave pattern with speeds and the star state, e.g.
-  /// "left rarefaction (head speed -1.18322, tail speed -0.0702745), contact (speed 0.927453),
-  /// right shock (speed 1.75216); p* = 0.303130, u* = 0.927453, rho*L = 0.426319, rho*R = 0.265574".
+  /// "left rarefaction (head speed -1.18322, tail speed -0.0702728), contact (speed 0.927453),
+  /// right shock (speed 1.75216); p* = 0.30313, u* = 0.927453, rho*L = 0.426319, rho*R = 0.265574".
   std::string describe() const { return describe_waves(nullptr); }
   /// The same with the positions of the waves at time t.
   std::string describe(double t) const { return describe_waves(&t); }

@@ -43,8 +43,8 @@
 #include <cstdio>
 #include <cstring>
 #include <fstream>
+#include <locale>
 #include <map>
-#include <sstream>
 #include <string>
 #include <string_view>
 #include <vector>
@@ -122,14 +122,17 @@ inline std::vector<std::string_view> split(std::string_view line) {
   return tokens;
 }
 
-/// Write `text` to path.tmp, then rename it to path; sph::Error naming the path on failure.
-inline void write_file_atomically(const std::string& path, const std::string& text) {
+/// Call `write(stream)` on path.tmp, then rename it to path; sph::Error naming the path on
+/// failure (the temporary file is removed).
+template <class Writer>
+void write_file_atomically(const std::string& path, Writer&& write) {
   const std::string temporary = path + ".tmp";
   {
     std::ofstream out(temporary, std::ios::binary | std::ios::trunc);
     require(static_cast<bool>(out), "cannot write " + path + ": cannot open " + temporary + " (" +
                                         std::strerror(errno) + ")");
-    out.write(text.data(), static_cast<std::streamsize>(text.size()));
+    out.imbue(std::locale::classic());  // no digit grouping in the integers, whatever the user's locale
+    write(out);
     out.close();
     if (!out) {
       std::remove(temporary.c_str());
@@ -141,6 +144,15 @@ inline void write_file_atomically(const std::string& path, const std::string& te
     std::remove(temporary.c_str());
     throw Error("cannot write " + path + ": renaming " + temporary + " failed (" + reason + ")");
   }
+}
+
+/// Write one table row: each number right-aligned in 24 characters.
+inline void write_row(std::ostream& out, const double* values, std::size_t count) {
+  for (std::size_t c = 0; c < count; ++c) {
+    const std::string number = format_number(values[c]);
+    out << std::string(number.size() < 24 ? 24 - number.size() : 1, ' ') << number;
+  }
+  out << '\n';
 }
 
 }  // namespace splash_ascii
@@ -175,28 +187,26 @@ void write_snapshot(const std::string& path, const Particles<D>& p, double time,
                                     " entries for " + std::to_string(n) + " particles");
   }
   require(p.velocity.size() == n, "snapshot " + path + ": velocity has the wrong size");
-  // Header: npart and dimensions first, then time and gamma (SPLASH takes the first two reals).
-  std::string text = "# SPH snapshot (SPLASH ascii format; time and gamma are the numbers below)\n";
-  text += "# " + std::to_string(n) + "  npart\n";
-  text += "# " + std::to_string(D) + "  dimensions\n";
-  text += "# " + format_number(time) + "  time\n";
-  text += "# " + format_number(gamma) + "  gamma\n";
-  text += splash_ascii::column_label_line(snapshot_labels<D>()) + "\n";
-  // One row per particle, each number right-aligned in 24 characters.
-  std::vector<double> row;
-  for (std::size_t i = 0; i < n; ++i) {
-    row.clear();
-    for (int a = 0; a < D; ++a) row.push_back(p.position[i][a]);
-    for (int a = 0; a < D; ++a) row.push_back(p.velocity[i][a]);
-    row.insert(row.end(), {p.mass[i], p.smoothing_length[i], p.density[i], p.internal_energy[i], p.pressure[i]});
-    for (double x : row) {
-      const std::string number = format_number(x);
-      text.append(number.size() < 24 ? 24 - number.size() : 1, ' ');
-      text += number;
+  splash_ascii::write_file_atomically(path, [&](std::ostream& out) {
+    // Header: npart and dimensions first, then time and gamma (SPLASH takes the first two reals).
+    out << "# SPH snapshot (SPLASH ascii format; time and gamma are the numbers below)\n"
+        << "# " << n << "  npart\n"
+        << "# " << D << "  dimensions\n"
+        << "# " << format_number(time) << "  time\n"
+        << "# " << format_number(gamma) << "  gamma\n"
+        << splash_ascii::column_label_line(snapshot_labels<D>()) << "\n";
+    // One row per particle.
+    double row[2 * D + 5];
+    for (std::size_t i = 0; i < n; ++i) {
+      for (int a = 0; a < D; ++a) {
+        row[a] = p.position[i][a];
+        row[D + a] = p.velocity[i][a];
+      }
+      const double scalars[5] = {p.mass[i], p.smoothing_length[i], p.density[i], p.internal_energy[i], p.pressure[i]};
+      std::copy(scalars, scalars + 5, row + 2 * D);
+      splash_ascii::write_row(out, row, 2 * D + 5);
     }
-    text += '\n';
-  }
-  splash_ascii::write_file_atomically(path, text);
+  });
 }
 
 /// Read a snapshot written by write_snapshot back into particles of dimension D.  Throws
