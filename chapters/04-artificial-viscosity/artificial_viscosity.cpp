@@ -182,6 +182,8 @@ LatticeSums lattice_sums_1d(double eta) {
 /// The defaults are the paper-resolution runs; `--quick` shrinks them for the test suite.
 
 struct Parameters {
+  sph::GasState left{1.0, 0.0, 1.0}, right{0.125, 0.0, 0.1};  // Sod (1978)
+  double gamma = 1.4;
   double alpha = 1.0, beta = 2.0, nu2 = 0.01;
   double t_end = 0.2;
   int sod_1d = 3200;   // left-side particles per unit length in 1D (the window then holds 1800)
@@ -197,6 +199,13 @@ int main(int argc, char** argv) {
   return app::run_main([&] {
     app::Chapter chapter("04-artificial-viscosity", "Chapter 4: Monaghan's artificial viscosity", argc, argv);
     Parameters par;
+    chapter.parameter("--rho-left", par.left.density, "Sod: density on the left").check(app::positive());
+    chapter.parameter("--p-left", par.left.pressure, "Sod: pressure on the left").check(app::positive());
+    chapter.parameter("--v-left", par.left.velocity, "Sod: velocity on the left");
+    chapter.parameter("--v-right", par.right.velocity, "Sod: velocity on the right");
+    chapter.parameter("--rho-right", par.right.density, "Sod: density on the right").check(app::positive());
+    chapter.parameter("--p-right", par.right.pressure, "Sod: pressure on the right").check(app::positive());
+    chapter.parameter("--gamma", par.gamma, "adiabatic index").check(app::greater_than(1.0));
     chapter.parameter("--alpha", par.alpha, "bulk (linear) viscosity coefficient").check(app::non_negative());
     chapter.parameter("--beta", par.beta, "von Neumann-Richtmyer (quadratic) coefficient").check(app::non_negative());
     chapter.parameter("--nu2", par.nu2, "nu^2 / h^2 in mu_ij (Monaghan: 0.01; Selhammar: 1e-4)").check(app::positive());
@@ -213,6 +222,11 @@ int main(int argc, char** argv) {
       par.sod_2d = 64;
       par.sod_3d = 32;
     }
+    // The thresholds checked below are the numbers for Sod's tube; with other states
+    // the chapter runs and reports, but checks only conservation.
+    const bool is_sod = par.left.density == 1.0 && par.left.pressure == 1.0 && par.left.velocity == 0 &&
+                        par.right.velocity == 0 && par.right.density == 0.125 &&
+                        par.right.pressure == 0.1 && par.gamma == 1.4 && par.t_end == 0.2;
     const sph::MonaghanGingold1983 viscosity(par.alpha, par.beta, par.nu2);
     const std::string scheme = viscosity.describe();
     std::cout << "Chapter 4: Monaghan's artificial viscosity (" << scheme << ", nu^2 = " << par.nu2 << " h^2)\n";
@@ -224,6 +238,9 @@ int main(int argc, char** argv) {
     /// and 1800 particles in the window \f$ |x| \le 0.5 \f$, the length of the usual 1D tube;
     /// our periodic tube holds twice as many).  Fig. 4.1 shows the finer one.
     sph::ShockTubeSetup sod = sph::ShockTubeSetup::sod();
+    sod.left = par.left;
+    sod.right = par.right;
+    sod.gamma = par.gamma;
     const auto rule_1d = sph::SmoothingLengthRule::from_density(par.neighbours_1d);
     // (resolution, target): 800 per unit length puts 450 particles in the window, 3200 puts 1800.
     std::vector<std::pair<int, double>> l1_targets = {{par.sod_1d / 4, 0.003}, {par.sod_1d, 0.001}};
@@ -241,7 +258,8 @@ int main(int argc, char** argv) {
       // At paper resolution these are the targets; --quick runs four times coarser,
       // where first-order convergence allows four times the error.
       const double allowed = par.quick ? 4.0 * target : target;
-      chapter.check(errors[0].L1 <= allowed, "Sod 1D: L1(rho) = " + format("%.2e", errors[0].L1) + " at N = " +
+      if (is_sod)
+        chapter.check(errors[0].L1 <= allowed, "Sod 1D: L1(rho) = " + format("%.2e", errors[0].L1) + " at N = " +
                                                  std::to_string(n_window) + " exceeds " + format("%g", allowed));
       chapter.check(run.momentum_drift < 1e-12, "Sod 1D: momentum drifted by " + format("%.2e", run.momentum_drift));
       if (resolution == par.sod_1d) {
@@ -300,7 +318,7 @@ int main(int argc, char** argv) {
     }
     const double l1_at_one = l1_eta.front();
     const double l1_at_1p2 = l1_eta[par.quick ? 1 : 2];
-    chapter.check(l1_at_one < l1_at_1p2, "h = dx should beat h = 1.2 dx in 1D: L1 " + format("%.2e vs %.2e", l1_at_one, l1_at_1p2));
+    if (is_sod) chapter.check(l1_at_one < l1_at_1p2, "h = dx should beat h = 1.2 dx in 1D: L1 " + format("%.2e vs %.2e", l1_at_one, l1_at_1p2));
 
     /// \section ch04_multid Step 5: Sod's tube in 2D and 3D
     ///
@@ -323,7 +341,7 @@ int main(int argc, char** argv) {
                 sod2.seconds, 1e6 * sod2.seconds / sod2.steps / sod2.particles.size(), e2[0].L1, e2[1].L1, e2[2].L1);
     std::printf("  3D  %7zu  %3g  %5ld  %8.2f  %16.3f   %.3e  %.3e  %.3e\n", sod3.particles.size(), par.neighbours_3d, sod3.steps,
                 sod3.seconds, 1e6 * sod3.seconds / sod3.steps / sod3.particles.size(), e3[0].L1, e3[1].L1, e3[2].L1);
-    chapter.check(e3[0].L1 < 0.03, "Sod 3D: L1(rho) = " + format("%.3f", e3[0].L1) + " (expected below 0.03)");
+    if (is_sod) chapter.check(e3[0].L1 < 0.03, "Sod 3D: L1(rho) = " + format("%.3f", e3[0].L1) + " (expected below 0.03)");
     chapter.check(sod3.momentum_drift < 1e-12, "Sod 3D: momentum drifted by " + format("%.2e", sod3.momentum_drift));
     for (auto [fig_name, title, profile, n, ngb, seconds] :
          {std::tuple{"sod_2d.png", "Sod shock tube in 2D", app::make_profile(sod2.particles, "SPH"), sod2.particles.size(),
@@ -438,7 +456,7 @@ int main(int argc, char** argv) {
       sph::ErrorVsTime evt("Sod " + std::to_string(D) + "D: error against run time");
       for (const auto& [name, av] : methods) {
         for (int resolution : resolutions) {
-          sph::ShockTubeSetup s = sph::ShockTubeSetup::sod();
+          sph::ShockTubeSetup s = sod;
           s.left_spacing = 1.0 / resolution;
           const TubeRun<D> run = run_tube<D>(s, rule, av, par.t_end, name);
           sph::Measurement m = sph::shock_tube_measurement(run.particles, run.exact, par.t_end, s.left_spacing);
@@ -458,7 +476,7 @@ int main(int argc, char** argv) {
     study(std::integral_constant<int, 3>{}, par.quick ? std::vector<int>{24, 32} : std::vector<int>{24, 32, 48},
           sph::SmoothingLengthRule::neighbour_number(par.neighbours_3d, 2));
     const double order = evt1.order("\\alpha = 1, \\beta = 2", "L1(rho)");
-    chapter.check(order > 0.6, "Sod 1D: the L1(rho) convergence order " + format("%.2f", order) + " is below 0.6");
+    if (is_sod) chapter.check(order > 0.6, "Sod 1D: the L1(rho) convergence order " + format("%.2f", order) + " is below 0.6");
     return chapter.finish();
   });
 }
