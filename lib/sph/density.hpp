@@ -50,11 +50,18 @@ double density_of(const Particles<D>& p, const NeighbourList<D>& list, std::size
   return rho;
 }
 
-/// The density pass: writes p.density for every particle.  A particle whose sum is not
-/// positive and finite (no neighbours and no self term, or a NaN upstream) is an error that
-/// names it.
-template <int D, class K = Kernel<D>>
-void compute_density(Particles<D>& p, const NeighbourList<D>& list, DensityForm form = DensityForm::selhammar()) {
+/// Does nothing: the default for what compute_density does after each particle's sum.
+struct NoFinish {
+  void operator()(std::size_t) const {}
+};
+
+/// The density pass: writes p.density for every particle, then calls `finish(i)` for it in the
+/// same loop (the simulation computes pressure and sound speed there, saving a pass over the
+/// particles).  A particle whose sum is not positive and finite (no neighbours and no self
+/// term, or a NaN upstream) is an error that names it.
+template <int D, class K = Kernel<D>, class Finish = NoFinish>
+void compute_density(Particles<D>& p, const NeighbourList<D>& list, DensityForm form = DensityForm::selhammar(),
+                     const Finish& finish = {}) {
   const std::size_t n = p.size();
   require_positive_masses(p, "density");
   long bad = -1;
@@ -62,7 +69,9 @@ void compute_density(Particles<D>& p, const NeighbourList<D>& list, DensityForm 
   for (std::size_t i = 0; i < n; ++i) {
     const double rho = density_of<D, K>(p, list, i, form);
     p.density[i] = rho;
-    if (!(std::isfinite(rho) && rho > 0)) {
+    if (std::isfinite(rho) && rho > 0) {
+      finish(i);
+    } else {
 #pragma omp critical
       if (bad < 0 || static_cast<long>(i) < bad) bad = static_cast<long>(i);
     }

@@ -100,24 +100,20 @@ class Simulation {
   /// All passes at the current positions and (predicted) velocities.
   void compute_accelerations() {
     search_.update(particles_, box_, settings_.smoothing);
-    compute_density<D, K>(particles_, search_.list(), settings_.density);
-    equation_of_state();
+    scratch_.p_over_rho2.resize(particles_.size());
+    compute_density<D, K>(particles_, search_.list(), settings_.density, [this](std::size_t i) { equation_of_state(i); });
     compute_forces<D, K, typename P::PressureForm, Viscosity, evolve_energy>(particles_, search_.list(), viscosity_,
                                                                             scratch_);
     check_finite_forces();
   }
 
-  /// P_i, c_i and P_i/rho_i^2 from rho_i and u_i.
-  void equation_of_state() {
+  /// The equation-of-state pass for one particle: P_i, c_i and P_i/rho_i^2 from rho_i and u_i
+  /// (run inside the density loop, right after rho_i).
+  void equation_of_state(std::size_t i) {
     auto& p = particles_;
-    const std::size_t n = p.size();
-    scratch_.p_over_rho2.resize(n);
-#pragma omp parallel for schedule(static) if (n >= parallel_threshold)
-    for (std::size_t i = 0; i < n; ++i) {
-      p.pressure[i] = eos_.pressure(p.density[i], p.internal_energy[i]);
-      p.sound_speed[i] = eos_.sound_speed(p.density[i], p.internal_energy[i]);
-      scratch_.p_over_rho2[i] = p.pressure[i] / (p.density[i] * p.density[i]);
-    }
+    p.pressure[i] = eos_.pressure(p.density[i], p.internal_energy[i]);
+    p.sound_speed[i] = eos_.sound_speed(p.density[i], p.internal_energy[i]);
+    scratch_.p_over_rho2[i] = p.pressure[i] / (p.density[i] * p.density[i]);
   }
 
   // --- time stepping ------------------------------------------------------------------------
@@ -149,13 +145,9 @@ class Simulation {
     require(std::isfinite(limit.dt) && limit.dt > 0,
             "time step: no finite positive step (all particles at rest with zero sound speed?)");
     const double dt = limit.dt;
-    kick(0.5 * dt);
-    drift(dt);
-    // Predict v and u at the end of the step for the forces there, then kick from the half step.
-    velocity_half_ = particles_.velocity;
-    if constexpr (evolve_energy) energy_half_ = particles_.internal_energy;
-    kick(0.5 * dt);
+    kick_drift_predict(dt);
     compute_accelerations();
+    // The second half kick starts from the half-step values, not from the prediction.
     std::swap(particles_.velocity, velocity_half_);
     if constexpr (evolve_energy) std::swap(particles_.internal_energy, energy_half_);
     kick(0.5 * dt);
@@ -206,11 +198,26 @@ class Simulation {
     }
   }
 
-  void drift(double dt) {
+  // The first half of a step in one pass over the particles: half kick to v^{n+1/2} (kept in
+  // velocity_half_), drift, and the prediction v^{n+1/2} + a^n dt/2 that the forces at the end
+  // of the step see (left in p.velocity); the same for u.
+  void kick_drift_predict(double dt) {
     auto& p = particles_;
     const std::size_t n = p.size();
+    velocity_half_.resize(n);
+    if constexpr (evolve_energy) energy_half_.resize(n);
 #pragma omp parallel for schedule(static) if (n >= parallel_threshold)
-    for (std::size_t i = 0; i < n; ++i) p.position[i] = box_.wrap(p.position[i] + dt * p.velocity[i]);
+    for (std::size_t i = 0; i < n; ++i) {
+      const Vec<D> half_kick = 0.5 * dt * p.acceleration[i];
+      velocity_half_[i] = p.velocity[i] + half_kick;
+      p.position[i] = box_.wrap(p.position[i] + dt * velocity_half_[i]);
+      p.velocity[i] = velocity_half_[i] + half_kick;
+      if constexpr (evolve_energy) {
+        const double half_heat = 0.5 * dt * p.energy_rate[i];
+        energy_half_[i] = p.internal_energy[i] + half_heat;
+        p.internal_energy[i] = energy_half_[i] + half_heat;
+      }
+    }
   }
 
   // A NaN or infinity must never travel on: stop and name the particle.
