@@ -1,0 +1,385 @@
+/// \page ch01 Chapter 1: The smoothing kernel
+///
+/// \section ch01_intro What this chapter is about
+///
+/// Smoothed particle hydrodynamics replaces a fluid by particles and every field by a sum over
+/// them.  The sum comes from an exact identity, \f$ A(\mathbf r) = \int A(\mathbf r')\,
+/// \delta(\mathbf r - \mathbf r')\, dV' \f$, with the delta function replaced by a narrow, smooth
+/// bump \f$ W \f$ of width \f$ h \f$, the **smoothing kernel**:
+/// \f[ \langle A \rangle(\mathbf r) = \int A(\mathbf r')\, W(\mathbf r - \mathbf r', h)\, dV'
+///     \;\approx\; \sum_j \frac{m_j}{\rho_j}\, A_j\, W(\mathbf r - \mathbf r_j, h). \f]
+/// The second step treats each particle as a parcel of volume \f$ m_j/\rho_j \f$; it is
+/// Watkins et al. (1996) eq A1.  Put \f$ A = \rho \f$ and the volumes cancel: the density is
+/// a plain sum of kernels, \f$ \rho_i = \sum_j m_j W_{ij} \f$ (Selhammar 1997 eq 5, and the
+/// subject of chapter 2).  Everything SPH does -- densities, pressure forces, viscosities --
+/// is built from W and its gradient, so we begin by looking at the kernel closely.
+///
+/// A kernel must
+///  1. integrate to one, \f$ \int W\, dV = 1 \f$, so that a constant field is reproduced;
+///  2. be symmetric, \f$ W(\mathbf r) = W(-\mathbf r) \f$, so that \f$ \nabla W \f$ is odd and
+///     pair forces can be made equal and opposite;
+///  3. tend to the delta function as \f$ h \to 0 \f$, so that the smoothing error vanishes;
+///  4. be smooth, because its derivatives appear in the equations of motion;
+///  5. vanish beyond a few h -- **compact support** -- so that each sum runs over a few dozen
+///     neighbours instead of all N particles.  A Gaussian satisfies 1-4 but reaches everywhere;
+///     cut off at \f$ 3h \f$ it is no longer normalised or smooth.
+///
+/// \section ch01_m4 The M4 cubic spline
+///
+/// Both papers of this course use the M4 kernel of Monaghan & Lattanzio (1985)
+/// (Selhammar eq 3, Watkins eqs A2-A3).  With \f$ q = r/h \f$ it is
+/// \f[ W(r, h) = \frac{\sigma_D}{h^D}\, w(q), \qquad
+///     w(q) = \begin{cases} 1 - \frac32 q^2 + \frac34 q^3, & 0 \le q < 1,
+///                          \\ \frac14 (2 - q)^3, & 1 \le q < 2, \\ 0, & q \ge 2. \end{cases} \f]
+/// Its support is \f$ 2h \f$: the h of the papers is *half* the radius of the kernel, which
+/// matters when we read their neighbour numbers in chapter 2.  The shape is the cubic
+/// B-spline: four unit top-hats convolved with each other.  Start from the top-hat
+/// \f$ B_1(q) = 1 \f$ on \f$ |q| < \frac12 \f$; convolving it with itself gives the triangle
+/// \f$ B_2 \f$ on \f$ |q| < 1 \f$, once more the piecewise quadratic \f$ B_3 \f$ on
+/// \f$ |q| < \frac32 \f$, and once more the piecewise cubic \f$ B_4 \f$ on \f$ |q| < 2 \f$, which is
+/// \f$ \frac23 w(q) \f$.  Every convolution with a top-hat integrates once, so it makes the
+/// result one derivative smoother and keeps its integral at one.  That origin explains the
+/// kernel's virtues.  It is a piecewise cubic whose value, slope and curvature are continuous
+/// (C², point 4); it is positive and has unit integral in 1D by construction; and in 1D its
+/// Fourier transform is the product of the four top-hats' transforms,
+/// \f[ \hat W(k) = \left(\frac{\sin(kh/2)}{kh/2}\right)^4 \qquad (D = 1), \f]
+/// which we shall meet again in chapter 2, where it decides how accurately a lattice of
+/// particles represents a uniform density.  It is also the lowest-order spline that is C² --
+/// cheap to evaluate, with support just wide enough (about 60 neighbours in 3D) to give
+/// smooth sums.
+///
+/// The normalisation \f$ \sigma_D \f$ follows from point 1.  In D dimensions the volume element
+/// of a spherical shell is \f$ S_D r^{D-1} dr \f$ with \f$ S_D = 2, 2\pi, 4\pi \f$, so
+/// \f[ 1 = \int W\, dV = \sigma_D\, S_D \int_0^2 w(q)\, q^{D-1}\, dq
+///     \quad\Longrightarrow\quad \sigma_D = \frac{1}{S_D\, I_D}, \qquad
+///     I_D = \int_0^2 w(q)\, q^{D-1}\, dq = \frac34,\ \frac{7}{20},\ \frac14 . \f]
+/// Hence \f$ \sigma_1 = 2/3 \f$, \f$ \sigma_2 = 10/(7\pi) \f$, \f$ \sigma_3 = 1/\pi \f$.
+/// Watkins writes the same kernel as \f$ \eta_d (\frac23 - u^2 + \frac12 u^3) \f$ with
+/// \f$ \eta_d = 1/h,\ 15/(7\pi h^2),\ 3/(2\pi h^3) \f$ (eq A3): the factor \f$ \frac23 \f$ moved
+/// into the normalisation.  The program computes the \f$ I_D \f$ by quadrature and checks that
+/// the library's table (`lib/sph/kernel.hpp`), Selhammar's eq 3 and Watkins' eq A3 all agree.
+///
+/// For comparison we carry the Wendland (1995) C2 kernel, scaled to the same support
+/// \f$ 2h \f$.  It is smoother at the origin and -- the property that matters -- its Fourier
+/// transform is positive in every dimension, which protects it from the *pairing instability*
+/// that afflicts the M4 at large neighbour numbers (Dehnen & Aly 2012).  We shall see the
+/// M4's negative Fourier lobe in 3D below.
+
+#include "app/chapter.hpp"
+#include "plot/figure.hpp"
+#include "sph/kernel.hpp"
+
+#include <cmath>
+#include <cstdio>
+#include <numbers>
+#include <string>
+#include <vector>
+
+namespace {
+
+using std::numbers::pi;
+
+/// \section ch01_quadrature Step 1: integrals of the kernel by quadrature
+///
+/// Every check in this chapter is an integral of the kernel over the radius.  The shape is a
+/// different cubic on \f$ [0, 1) \f$ and \f$ [1, 2) \f$, so we integrate each piece separately
+/// with the composite Simpson rule, which is then exact up to round-off for integrands that
+/// are polynomials of degree three and accurate to \f$ O(\delta q^4) \f$ for the higher powers
+/// of q that the moments bring in.  `intervals` is the number of Simpson intervals per piece.
+
+template <class F>
+double integrate_pieces(F f, int intervals) {
+  double total = 0;
+  for (int piece = 0; piece < 2; ++piece) {
+    const double a = piece, dq = 1.0 / intervals;
+    double sum = f(a) + f(a + 1.0);  // the kernel is continuous at the knots
+    for (int k = 1; k < intervals; ++k) sum += (k % 2 ? 4.0 : 2.0) * f(a + k * dq);
+    total += sum * dq / 3.0;
+  }
+  return total;
+}
+
+/// The surface of the unit sphere in D dimensions: 2, \f$ 2\pi \f$, \f$ 4\pi \f$.
+constexpr double unit_sphere_surface(int dimension) { return dimension == 1 ? 2.0 : dimension == 2 ? 2.0 * pi : 4.0 * pi; }
+
+/// \f$ \int W\,dV \f$ for kernel K at smoothing length h: the normalisation test.  We integrate
+/// the dimensional W (not the shape) so that the library's \f$ h^{-D} \f$ is tested too.
+template <int D, class K>
+double kernel_integral(double h, int intervals) {
+  return unit_sphere_surface(D) * h *
+         integrate_pieces([&](double q) { return K::value(q * h, h) * std::pow(q * h, D - 1); }, intervals);
+}
+
+/// \f$ \int r^2 W\, dV / h^2 \f$: the kernel's second moment in units of \f$ h^2 \f$.
+template <int D, class K>
+double second_moment(int intervals) {
+  return unit_sphere_surface(D) * K::sigma * integrate_pieces([](double q) { return q * q * K::shape::evaluate(q).w * std::pow(q, D - 1); }, intervals);
+}
+
+/// \section ch01_fourier Step 2: the Fourier transform
+///
+/// For a radial kernel the Fourier transform is itself radial.  In 1D it is a cosine
+/// transform, in 3D the familiar \f$ \sin(kr)/(kr) \f$ transform:
+/// \f[ \hat W_{1}(k) = 2\int_0^{2h} W(r) \cos(kr)\, dr, \qquad
+///     \hat W_{3}(k) = 4\pi \int_0^{2h} W(r)\, \frac{\sin kr}{kr}\, r^2\, dr . \f]
+/// \f$ \hat W(0) = 1 \f$ is the normalisation again; the behaviour at large k says how strongly
+/// the kernel suppresses structure smaller than h.  Smoothing a wave \f$ \sin(kx) \f$ multiplies
+/// its amplitude by \f$ \hat W(k) \f$ -- the smoothing error of SPH in one number.
+
+template <int D, class K>
+double fourier_transform(double kh, int intervals) {
+  static_assert(D == 1 || D == 3, "the radial transforms are written for 1D and 3D");
+  const double h = 1.0;
+  if constexpr (D == 1) {
+    return 2.0 * h * integrate_pieces([&](double q) { return K::value(q, h) * std::cos(kh * q); }, intervals);
+  } else {
+    auto sinc = [](double x) { return std::abs(x) < 1e-8 ? 1.0 - x * x / 6.0 : std::sin(x) / x; };
+    return 4.0 * pi * integrate_pieces([&](double q) { return K::value(q, h) * sinc(kh * q) * q * q; }, intervals);
+  }
+}
+
+/// \section ch01_gradient Step 3: the gradient against finite differences
+///
+/// The library returns \f$ dw/dq \f$ and \f$ (dw/dq)/q \f$ from the same call, so that
+/// \f$ \nabla_i W = \frac{\sigma_D}{h^{D+2}} \frac{1}{q}\frac{dw}{dq}\, \mathbf r_{ij} \f$ never
+/// divides by \f$ r \f$: two particles on top of each other get a zero gradient, not a NaN.
+/// We compare \f$ dW/dr \f$ with a centred difference of W at many radii, and report the worst
+/// relative error (with an absolute floor of \f$ 10^{-8} \f$ of the kernel's scale, since the
+/// derivative passes through zero at the origin and at the support).
+
+template <int D, class K>
+double worst_gradient_error(int samples) {
+  const double h = 0.7, dr = 1e-6 * h, floor = 1e-8 * K::value(0, h) / h;
+  double worst = 0;
+  for (int k = 1; k < samples; ++k) {
+    const double r = 2.0 * h * k / samples;
+    const double fd = (K::value(r + dr, h) - K::value(r - dr, h)) / (2 * dr);
+    worst = std::max(worst, std::abs(K::derivative(r, h) - fd) / (std::abs(fd) + floor));
+  }
+  return worst;
+}
+
+/// \section ch01_table Step 4: the normalisation table
+///
+/// One row per kernel and dimension: the shape integral \f$ I_D \f$ by quadrature, the
+/// \f$ \sigma_D \f$ it implies, the library's \f$ \sigma_D \f$, the reference value (for the M4
+/// Watkins' eq A3 times \f$ \frac23 \f$, which in 3D is also Selhammar's eq 3; for the Wendland C2
+/// Dehnen & Aly 2012, Table 1, rescaled to support 2h), \f$ \int W\,dV - 1 \f$, the worst
+/// relative error of \f$ dW/dr \f$ against finite differences, and the second moment
+/// \f$ \langle r^2 \rangle / h^2 \f$.  The chapter checks that \f$ \int W\,dV \f$ is one to
+/// \f$ 10^{-10} \f$ and that the three values of \f$ \sigma_D \f$ agree.
+
+struct Row {
+  std::string kernel;
+  int dimension;
+  double shape_integral, sigma_from_integral, sigma_library, sigma_reference, volume_integral, gradient_error, moment;
+};
+
+template <int D, class K>
+Row normalisation_row(const std::string& name, double sigma_reference, int intervals) {
+  Row row{name, D, 0, 0, 0, sigma_reference, 0, 0, 0};
+  row.shape_integral = integrate_pieces([](double q) { return K::shape::evaluate(q).w * std::pow(q, D - 1); }, intervals);
+  row.sigma_from_integral = 1.0 / (unit_sphere_surface(D) * row.shape_integral);
+  row.sigma_library = K::sigma;
+  row.volume_integral = kernel_integral<D, K>(0.37, intervals);
+  row.gradient_error = worst_gradient_error<D, K>(2000);
+  row.moment = second_moment<D, K>(intervals);
+  return row;
+}
+
+/// \section ch01_figure Step 5: the figure
+///
+/// Four panels.  (a) \f$ h^D W \f$ against \f$ q = r/h \f$ -- the kernel as a sum sees it, in
+/// each dimension; (b) its slope \f$ h^{D+1}\, dW/dr \f$, whose most negative point (at
+/// \f$ q = 2/3 \f$ for the M4) is where a neighbour pushes hardest; (c) the *radial weight*
+/// \f$ S_D\, q^{D-1}\, h^D W \f$, the share of the kernel's integral at each radius (each curve
+/// has unit area) -- in 3D most of the weight sits near \f$ q = 1 \f$, not at the centre;
+/// (d) the tail of the Fourier transform, magnified, where the M4 goes negative in 3D and the
+/// Wendland C2 does not.
+
+struct Curves {
+  std::vector<double> q, value, slope, weight;
+};
+
+template <int D, class K>
+Curves kernel_curves(int samples) {
+  Curves c;
+  for (int k = 0; k <= samples; ++k) {
+    const double q = 2.2 * k / samples;
+    c.q.push_back(q);
+    c.value.push_back(K::value(q, 1.0));
+    c.slope.push_back(K::derivative(q, 1.0));
+    c.weight.push_back(unit_sphere_surface(D) * std::pow(q, D - 1) * K::value(q, 1.0));
+  }
+  return c;
+}
+
+template <int D, class K>
+void draw_kernel(plot::Figure& figure, int samples, plot::Color color, plot::Dash dash, const std::string& label) {
+  const Curves c = kernel_curves<D, K>(samples);
+  figure.panel(0).line(c.q, c.value, {.label = label, .color = color, .style = dash, .width = 2.0});
+  figure.panel(1).line(c.q, c.slope, {.label = label, .color = color, .style = dash, .width = 2.0});
+  figure.panel(2).line(c.q, c.weight, {.label = label, .color = color, .style = dash, .width = 2.0});
+}
+
+template <int D, class K>
+void draw_fourier(plot::Axes& axes, int samples, int intervals, plot::Color color, plot::Dash dash, const std::string& label) {
+  std::vector<double> kh, transform;
+  for (int k = 0; k <= samples; ++k) {
+    kh.push_back(20.0 * k / samples);
+    transform.push_back(fourier_transform<D, K>(kh.back(), intervals));
+  }
+  axes.line(kh, transform, {.label = label, .color = color, .style = dash, .width = 2.0});
+}
+
+std::string format(const char* pattern, double value) {
+  char text[64];
+  std::snprintf(text, sizeof text, pattern, value);
+  return text;
+}
+
+}  // namespace
+
+/// \section ch01_main The program
+///
+/// The main program fills the table, prints it, checks every entry against the exact values,
+/// compares the 1D Fourier transform with the B-spline formula, measures the smallest value of
+/// the 3D transforms, and draws the figure.  With `--quick` it uses coarser quadrature and
+/// fewer figure samples (the checks hold either way); `--intervals` sets the quadrature
+/// directly, so a reader can watch the checks fail when the quadrature is too coarse
+/// (with `--intervals 2` the 2D integral is 1 % off, and eleven checks say so).
+///
+/// Every check compares a number with its exact value and a stated tolerance.  The
+/// tolerances are not arbitrary:
+///  - \f$ \int W\,dV = 1 \f$ to \f$ 10^{-10} \f$: Simpson's rule with 400 or more intervals per
+///    kernel piece is accurate to about \f$ 10^{-11} \f$ for the quintic and septic integrands of
+///    the 3D moments, and round-off is \f$ 10^{-14} \f$; a wrong normalisation would be off by
+///    a rational factor, not by \f$ 10^{-10} \f$.
+///  - the library's \f$ \sigma_D \f$ equals the papers' to \f$ 10^{-14} \f$: both are the same
+///    fraction of \f$ \pi \f$ computed in double precision.
+///  - \f$ dW/dr \f$ against finite differences to \f$ 10^{-6} \f$ relative: the difference
+///    quotient's own truncation error is \f$ 3\cdot 10^{-7} \f$ at its worst (next to the
+///    support's edge, see the results), so a tighter bound would test the finite difference,
+///    not the kernel.
+///  - the 1D transform against \f$ (\sin(kh/2)/(kh/2))^4 \f$ to \f$ 10^{-9} \f$: the two are
+///    the same function if and only if the M4 is the cubic B-spline.
+
+int main(int argc, char** argv) {
+  return app::run_main([&] {
+    app::Chapter chapter("01-kernel", "Chapter 1: The smoothing kernel", argc, argv);
+    int intervals = 2000;
+    chapter.parameter("--intervals", intervals, "Simpson intervals per kernel piece (even)")
+        .check(app::require<int>([](int n) { return n >= 2 && n % 2 == 0; }, "must be even and at least 2"));
+    if (int rc = chapter.parse(); rc >= 0) return rc;
+    if (chapter.quick()) intervals = std::min(intervals, 400);
+    const int samples = chapter.quick() ? 200 : 800;
+
+    using M4_1 = sph::Kernel<1>;
+    using M4_2 = sph::Kernel<2>;
+    using M4_3 = sph::Kernel<3>;
+    using C2_1 = sph::Kernel<1, sph::WendlandC2<1>>;
+    using C2_2 = sph::Kernel<2, sph::WendlandC2<2>>;
+    using C2_3 = sph::Kernel<3, sph::WendlandC2<3>>;
+
+    // The papers' normalisations: Selhammar eq 3 in 3D, Watkins eq A3 times 2/3 in 1D-3D.
+    const std::vector<Row> rows = {
+        normalisation_row<1, M4_1>("M4", 2.0 / 3.0 * 1.0, intervals),
+        normalisation_row<2, M4_2>("M4", 2.0 / 3.0 * 15.0 / (7.0 * pi), intervals),
+        normalisation_row<3, M4_3>("M4", 2.0 / 3.0 * 3.0 / (2.0 * pi), intervals),
+        normalisation_row<1, C2_1>("Wendland C2", 5.0 / 8.0, intervals),
+        normalisation_row<2, C2_2>("Wendland C2", 7.0 / (4.0 * pi), intervals),
+        normalisation_row<3, C2_3>("Wendland C2", 21.0 / (16.0 * pi), intervals),
+    };
+    std::printf("Normalisation of the kernels, W = sigma_D / h^D w(r/h), support 2h\n\n");
+    std::printf("%-12s %2s %14s %14s %14s %14s %18s %12s %10s\n", "kernel", "D", "I_D=int w q^D-1",
+                "1/(S_D I_D)", "sigma (lib)", "sigma (ref)", "int W dV - 1", "grad error", "<r^2>/h^2");
+    for (const Row& r : rows) {
+      std::printf("%-12s %2d %14.10f %14.10f %14.10f %14.10f %18.3e %12.2e %10.6f\n", r.kernel.c_str(), r.dimension,
+                  r.shape_integral, r.sigma_from_integral, r.sigma_library, r.sigma_reference, r.volume_integral - 1.0,
+                  r.gradient_error, r.moment);
+      const std::string who = r.kernel + " in " + std::to_string(r.dimension) + "D";
+      chapter.check(std::abs(r.volume_integral - 1.0) < 1e-10,
+                    who + ": int W dV = " + format("%.15f", r.volume_integral) + ", expected 1 to 1e-10");
+      chapter.check(std::abs(r.sigma_library / r.sigma_reference - 1.0) < 1e-14,
+                    who + ": library sigma " + format("%.15f", r.sigma_library) + " differs from the reference " +
+                        format("%.15f", r.sigma_reference));
+      chapter.check(std::abs(r.sigma_from_integral / r.sigma_library - 1.0) < 1e-10,
+                    who + ": sigma from the quadrature " + format("%.15f", r.sigma_from_integral) +
+                        " differs from the library's");
+      chapter.check(r.gradient_error < 1e-6, who + ": dW/dr differs from finite differences by " +
+                                                 format("%.2e", r.gradient_error) + " (relative), limit 1e-6");
+    }
+    // The exact shape integrals of the M4 quoted in the text: 3/4, 7/20, 1/4.
+    const double exact_integrals[] = {0.75, 0.35, 0.25};
+    for (int d = 0; d < 3; ++d) {
+      chapter.check(std::abs(rows[d].shape_integral - exact_integrals[d]) < 1e-10,
+                    "M4 shape integral I_" + std::to_string(d + 1) + " = " + format("%.15f", rows[d].shape_integral) +
+                        ", expected " + format("%.4f", exact_integrals[d]));
+    }
+
+    /// The second moment \f$ \langle r^2 \rangle = \int r^2 W\, dV \f$ sets the leading
+    /// smoothing error: expanding \f$ A(\mathbf r') \f$ to second order under the integral,
+    /// \f$ \langle A\rangle = A + \frac{\langle r^2\rangle}{2D} \nabla^2 A + O(h^4) \f$.  For the
+    /// 1D M4 it is \f$ h^2/3 \f$ -- the variance of four unit top-hats, \f$ 4 \times \frac1{12} \f$
+    /// -- so a wave \f$ \sin kx \f$ is smoothed by \f$ 1 - k^2h^2/6 \f$, the leading term of
+    /// \f$ \hat W(k) \f$ above.  The error is second order in h: halving h quarters it.
+    chapter.check(std::abs(rows[0].moment - 1.0 / 3.0) < 1e-12,
+                  "1D M4 second moment " + format("%.15f", rows[0].moment) + ", expected 1/3");
+
+    // The 1D transform against the B-spline formula, and the smallest values of the 3D transforms.
+    double worst_fourier = 0;
+    for (int k = 1; k <= 400; ++k) {
+      const double kh = 0.05 * k;
+      const double bspline = std::pow(std::sin(kh / 2) / (kh / 2), 4);
+      worst_fourier = std::max(worst_fourier, std::abs(fourier_transform<1, M4_1>(kh, intervals) - bspline));
+    }
+    double m4_min = 1, m4_at = 0, c2_min = 1;
+    for (int k = 1; k <= 2000; ++k) {
+      const double kh = 0.01 * k;
+      const double m4 = fourier_transform<3, M4_3>(kh, intervals), c2 = fourier_transform<3, C2_3>(kh, intervals);
+      if (m4 < m4_min) {
+        m4_min = m4;
+        m4_at = kh;
+      }
+      c2_min = std::min(c2_min, c2);
+    }
+    std::printf("\nFourier transform of the M4 in 1D against (sin(kh/2)/(kh/2))^4, 0 < kh <= 20: "
+                "largest difference %.2e\n", worst_fourier);
+    std::printf("Smallest value of the 3D transform for 0 < kh <= 20: M4 %.3e (at kh = %.2f), Wendland C2 %.3e\n",
+                m4_min, m4_at, c2_min);
+    chapter.check(worst_fourier < 1e-9, "1D M4 transform differs from the B-spline formula by " + format("%.2e", worst_fourier));
+    chapter.check(m4_min < -1e-4, "expected a negative lobe of the 3D M4 transform, minimum " + format("%.3e", m4_min));
+    chapter.check(c2_min > -1e-9, "the 3D Wendland C2 transform went negative: " + format("%.3e", c2_min));
+    double worst_integral = 0;
+    for (const Row& r : rows) worst_integral = std::max(worst_integral, std::abs(r.volume_integral - 1.0));
+    chapter.summary("error", "max |int W dV - 1| = " + format("%.1e", worst_integral));
+    chapter.summary("m4_3d_fourier_min", format("%.4e", m4_min));
+
+    /// The figure is written to `kernel.png` in the output directory.
+    plot::Figure figure(2, 2, {.width = 1600, .height = 1200});
+    figure.title("The M4 cubic spline (solid) and the Wendland C2 kernel (dashed), support 2h");
+    figure.stamp(plot::Stamp{.kernel = "M4 and Wendland C2", .run_time = chapter.seconds()});
+    const plot::Color colours[] = {plot::black, plot::red, plot::blue};
+    draw_kernel<1, M4_1>(figure, samples, colours[0], plot::Dash::solid, "M4, 1D");
+    draw_kernel<2, M4_2>(figure, samples, colours[1], plot::Dash::solid, "M4, 2D");
+    draw_kernel<3, M4_3>(figure, samples, colours[2], plot::Dash::solid, "M4, 3D");
+    draw_kernel<1, C2_1>(figure, samples, colours[0], plot::Dash::dashed, "C2, 1D");
+    draw_kernel<2, C2_2>(figure, samples, colours[1], plot::Dash::dashed, "C2, 2D");
+    draw_kernel<3, C2_3>(figure, samples, colours[2], plot::Dash::dashed, "C2, 3D");
+    figure.panel(0).xlabel("q = r/h").ylabel("h^D W").legend(plot::Corner::upper_right);
+    figure.panel(1).xlabel("q = r/h").ylabel("h^{D+1} dW/dr").legend(plot::Corner::lower_right);
+    figure.panel(1).hline(0.0, {.color = plot::grey, .style = plot::Dash::dotted, .width = 1.0});
+    figure.panel(2).xlabel("q = r/h").ylabel("S_D q^{D-1} h^D W  (unit area)").legend(plot::Corner::upper_right);
+    plot::Axes& fourier = figure.panel(3);
+    draw_fourier<1, M4_1>(fourier, samples, intervals, colours[0], plot::Dash::solid, "M4, 1D = (sin(kh/2)/(kh/2))^4");
+    draw_fourier<3, M4_3>(fourier, samples, intervals, colours[2], plot::Dash::solid, "M4, 3D");
+    draw_fourier<3, C2_3>(fourier, samples, intervals, colours[2], plot::Dash::dashed, "C2, 3D");
+    fourier.hline(0.0, {.color = plot::grey, .style = plot::Dash::dotted, .width = 1.0});
+    fourier.text(m4_at + 0.6, m4_min, "M4 in 3D < 0 near kh = " + format("%.1f", m4_at), {.color = plot::blue});
+    fourier.xlabel("kh").ylabel("Fourier transform of W (tail, magnified)").ylim(-0.002, 0.006).xlim(0, 20);
+    fourier.legend(plot::Corner::upper_right);
+    figure.save_png(chapter.figure_path("kernel.png"));
+    std::printf("\nFigure: %s\n", chapter.figure_path("kernel.png").c_str());
+    return chapter.finish();
+  });
+}

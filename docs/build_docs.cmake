@@ -1,0 +1,97 @@
+# Builds the documentation: run as a script (cmake -P) by the `docs` target and by the
+# `docs.no_warnings` test.
+#
+#   -D LITERATE=<literate executable>  -D DOXYGEN=<doxygen>  -D DOXYFILE=<configured Doxyfile>
+#   -D SOURCE_DIR=<source tree>  -D FIGURES=<figures directory>  -D WORK=<output directory>
+#   -D MATHJAX=<MathJax 2 directory, or empty to skip copying it>
+#   -D STRICT=ON|OFF   ON: any warning (converter or Doxygen) fails; OFF: warnings are shown
+#
+# Steps: (1) the chapter programs become pages in WORK/pages, (2) Doxygen writes WORK/html with
+# a per-run configuration that includes DOXYFILE, (3) the parts of MathJax that the pages use
+# are copied to WORK/html/mathjax, so the site works offline and can be moved anywhere.
+cmake_minimum_required(VERSION 3.25)
+foreach(var LITERATE DOXYGEN DOXYFILE SOURCE_DIR FIGURES WORK)
+  if(NOT DEFINED ${var})
+    message(FATAL_ERROR "build_docs.cmake: -D ${var}=... is required")
+  endif()
+endforeach()
+
+# ---- 1. The chapter pages and the main page --------------------------------------------------
+# Doxygen never deletes a page, so start from an empty site: nothing stale survives.
+file(REMOVE_RECURSE "${WORK}/html")
+set(strict_flag)
+if(STRICT)
+  set(strict_flag --strict)
+endif()
+execute_process(
+  COMMAND "${LITERATE}" --chapters "${SOURCE_DIR}/chapters" --figures "${FIGURES}"
+          --mainpage "${SOURCE_DIR}/docs/mainpage.md" --work "${WORK}" ${strict_flag}
+  RESULT_VARIABLE status)
+# 2: warnings under --strict (the pages exist: let Doxygen report its warnings too); else error.
+set(converter_warned OFF)
+if(status EQUAL 2)
+  set(converter_warned ON)
+elseif(NOT status EQUAL 0)
+  message(FATAL_ERROR "docs: the chapter pages could not be made (see the messages above)")
+endif()
+
+# ---- 2. Doxygen ------------------------------------------------------------------------------
+set(log "${WORK}/warnings.log")
+file(REMOVE "${log}")
+file(WRITE "${WORK}/Doxyfile.run"
+  "@INCLUDE = \"${DOXYFILE}\"\n"
+  "OUTPUT_DIRECTORY = \"${WORK}\"\n"
+  "INPUT += \"${WORK}/pages\"\n"
+  # The pages at the root of the file tree: no empty "pages" folder beside app, plot and sph.
+  "STRIP_FROM_PATH += \"${WORK}/pages\"\n"
+  "IMAGE_PATH = \"${WORK}/images\"\n"
+  "WARN_LOGFILE = \"${log}\"\n")
+execute_process(COMMAND "${DOXYGEN}" "${WORK}/Doxyfile.run"
+                WORKING_DIRECTORY "${WORK}" RESULT_VARIABLE status)
+set(warnings "")
+if(EXISTS "${log}")
+  file(READ "${log}" warnings)
+  string(STRIP "${warnings}" warnings)
+endif()
+if(NOT warnings STREQUAL "")
+  # Point the warnings about chapter pages at the chapters' own files and lines.
+  execute_process(COMMAND "${LITERATE}" --work "${WORK}" --explain "${log}"
+                  OUTPUT_VARIABLE explained RESULT_VARIABLE explain_status)
+  if(explain_status EQUAL 0)
+    string(STRIP "${explained}" warnings)
+  endif()
+endif()
+if(NOT status EQUAL 0)
+  message(FATAL_ERROR "docs: doxygen failed (exit status ${status})\n${warnings}")
+endif()
+if(NOT warnings STREQUAL "")
+  string(REGEX MATCHALL "\n" lines "\n${warnings}")
+  list(LENGTH lines count)
+  if(STRICT)
+    message(FATAL_ERROR "docs: Doxygen warned (${count} lines in ${log}):\n${warnings}")
+  endif()
+  message(WARNING "docs: Doxygen warned (${count} lines in ${log}):\n${warnings}")
+endif()
+if(converter_warned)
+  message(FATAL_ERROR "docs: the chapter pages have warnings (see the literate: lines above)")
+endif()
+
+# ---- 3. MathJax, offline: the core, TeX input, SVG output with the TeX fonts ----------------
+if(MATHJAX)
+  if(NOT EXISTS "${MATHJAX}/MathJax.js")
+    message(WARNING "docs: MathJax not found in ${MATHJAX}: formulas will not render "
+                    "(install libjs-mathjax)")
+  else()
+    set(to "${WORK}/html/mathjax")
+    file(COPY "${MATHJAX}/MathJax.js" DESTINATION "${to}")
+    file(COPY "${MATHJAX}/extensions" DESTINATION "${to}")
+    file(COPY "${MATHJAX}/jax/element" "${MATHJAX}/jax/input" DESTINATION "${to}/jax"
+         PATTERN "AsciiMath" EXCLUDE PATTERN "MathML" EXCLUDE)
+    file(COPY "${MATHJAX}/jax/output/SVG/jax.js" "${MATHJAX}/jax/output/SVG/config.js"
+              "${MATHJAX}/jax/output/SVG/autoload"
+         DESTINATION "${to}/jax/output/SVG")
+    file(COPY "${MATHJAX}/jax/output/SVG/fonts/TeX" DESTINATION "${to}/jax/output/SVG/fonts")
+    file(COPY "${MATHJAX}/localization/en" DESTINATION "${to}/localization")
+  endif()
+  message(STATUS "docs: ${WORK}/html/index.html")
+endif()

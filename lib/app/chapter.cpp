@@ -1,0 +1,312 @@
+#include "app/chapter.hpp"
+
+#include <omp.h>
+
+#include <algorithm>
+#include <cctype>
+#include <cmath>
+#include <cstdio>
+#include <fstream>
+#include <memory>
+#include <sstream>
+#include <stdexcept>
+#include <system_error>
+
+#ifndef SPH_FIGURES_DIR
+#define SPH_FIGURES_DIR "figures"
+#endif
+
+namespace app {
+
+// ---- Validators -------------------------------------------------------------------------------
+
+namespace {
+
+/// Shortest decimal form of a bound for messages: 1 rather than 1.000000.
+std::string show(double number) {
+  std::ostringstream text;
+  text.precision(12);
+  text << number;
+  return text.str();
+}
+
+/// A validator that reads the value as a number and applies \p accept; \p problem is the
+/// message when it fails ("must be greater than 1").
+CLI::Validator numeric(std::function<bool(double)> accept, const std::string& problem,
+                       const std::string& description) {
+  return CLI::Validator(
+      [accept = std::move(accept), problem](std::string& input) -> std::string {
+        double value = 0.0;
+        if (!CLI::detail::lexical_cast(input, value)) {
+          return "expected a number, got '" + input + "'";
+        }
+        if (!std::isfinite(value)) {
+          return "must be a finite number, got " + input;
+        }
+        return accept(value) ? std::string() : problem + ", got " + input;
+      },
+      description);
+}
+
+/// Help in two columns: the option with its type, then what it is, its default and its range:
+///   --gamma FLOAT              adiabatic index (default 1.4; > 1)
+class HelpFormatter : public CLI::Formatter {
+ public:
+  std::string make_option_opts(const CLI::Option* option) const override {
+    if (option->get_type_size() == 0) return "";
+    const std::string type = option->get_type_name();
+    return " " + type.substr(0, type.find(':'));
+  }
+  std::string make_option_desc(const CLI::Option* option) const override {
+    std::string details;
+    if (option->get_type_size() != 0 && !option->get_default_str().empty()) {
+      details = "default " + option->get_default_str();
+    }
+    const std::string type = option->get_type_name();
+    for (auto colon = type.find(':'); colon != std::string::npos;) {
+      const auto next = type.find(':', colon + 1);
+      details += (details.empty() ? "" : "; ") + type.substr(colon + 1, next - colon - 1);
+      colon = next;
+    }
+    return option->get_description() + (details.empty() ? "" : " (" + details + ")");
+  }
+};
+
+}  // namespace
+
+CLI::Validator finite() {
+  return numeric([](double) { return true; }, "must be a finite number", "");
+}
+CLI::Validator whole_number() {
+  return CLI::Validator(
+      [](std::string& input) -> std::string {
+        long long value = 0;
+        if (CLI::detail::lexical_cast(input, value)) return {};
+        double number = 0.0;
+        return CLI::detail::lexical_cast(input, number)
+                   ? "must be a whole number, got " + input
+                   : "expected a whole number, got '" + input + "'";
+      },
+      "");
+}
+CLI::Validator positive() {
+  return numeric([](double x) { return x > 0.0; }, "must be positive", "> 0");
+}
+CLI::Validator non_negative() {
+  return numeric([](double x) { return x >= 0.0; }, "must not be negative", ">= 0");
+}
+CLI::Validator greater_than(double bound) {
+  return numeric([bound](double x) { return x > bound; }, "must be greater than " + show(bound),
+                 "> " + show(bound));
+}
+CLI::Validator at_least(double bound) {
+  return numeric([bound](double x) { return x >= bound; }, "must be at least " + show(bound),
+                 ">= " + show(bound));
+}
+CLI::Validator less_than(double bound) {
+  return numeric([bound](double x) { return x < bound; }, "must be less than " + show(bound),
+                 "< " + show(bound));
+}
+CLI::Validator at_most(double bound) {
+  return numeric([bound](double x) { return x <= bound; }, "must be at most " + show(bound),
+                 "<= " + show(bound));
+}
+CLI::Validator between(double low, double high) {
+  const std::string range = "[" + show(low) + ", " + show(high) + "]";
+  return numeric([low, high](double x) { return low <= x && x <= high; }, "must lie in " + range,
+                 "in " + range);
+}
+
+// ---- The command line -------------------------------------------------------------------------
+
+Chapter::Chapter(std::string name, std::string title, int argc, char** argv)
+    : name_(std::move(name)),
+      title_(std::move(title)),
+      argc_(argc),
+      argv_(argv),
+      cli_(title_, name_),
+      output_arg_((std::filesystem::path(SPH_FIGURES_DIR) / name_).string()) {
+  // Set up the options every chapter shares.
+  cli_.add_flag("--quick", quick_, "reduced resolution that runs in seconds (used by the tests)")
+      ->group("Run options");
+  cli_.add_option("-o,--output", output_arg_, "directory for the figures and summary.txt")
+      ->capture_default_str()
+      ->type_name("DIR")
+      ->group("Run options");
+  cli_.add_option("--threads", threads_, "OpenMP threads; 0 uses every core")
+      ->capture_default_str()
+      ->check(non_negative())
+      ->group("Run options");
+  cli_.get_help_ptr()->group("Run options");
+  cli_.formatter(std::make_shared<HelpFormatter>());
+
+  // Errors read "ch: error: --gamma: must be greater than 1, got 0.5".
+  cli_.failure_message([name = name_](const CLI::App* app, const CLI::Error& error) {
+    std::string message = name + ": error: " + error.what() + "\n";
+    if (app->get_help_ptr() != nullptr) {
+      message += "Run with " + app->get_help_ptr()->get_name() + " for more information.\n";
+    }
+    return message;
+  });
+}
+
+void Chapter::require_dashes(const std::string& flag) {
+  // CLI11 would quietly make "gamma" a positional argument; a chapter's parameters are named.
+  if (flag.empty() || flag.front() != '-') {
+    throw std::invalid_argument("app::Chapter: option \"" + flag + "\" must start with -- (or -)");
+  }
+}
+
+CLI::Option& Chapter::flag(const std::string& flag, bool& value, const std::string& description) {
+  require_dashes(flag);
+  CLI::Option* option = cli_.add_flag(flag, value, description);
+  option->group("Scene parameters");
+  return *option;
+}
+
+void Chapter::require(std::function<bool()> condition, std::string problem) {
+  requirements_.push_back({std::move(condition), std::move(problem)});
+}
+
+int Chapter::parse() {
+  // Read the options; CLI11 reports --help, unknown options and rejected values itself.
+  try {
+    cli_.parse(argc_, argv_);
+  } catch (const CLI::ParseError& error) {
+    return cli_.exit(error, *out_, *err_);
+  }
+
+  // Check the conditions between parameters.
+  for (const Requirement& requirement : requirements_) {
+    if (!requirement.condition()) {
+      *err_ << name_ << ": error: " << requirement.problem << "\n"
+            << "Run with --help for more information.\n";
+      return static_cast<int>(CLI::ExitCodes::ValidationError);
+    }
+  }
+
+  // Apply the thread count.
+  if (threads_ > 0) {
+    omp_set_num_threads(threads_);
+  }
+
+  // Create the output directory and start the summary.
+  output_dir_ = output_arg_;
+  std::error_code failure;
+  std::filesystem::create_directories(output_dir_, failure);
+  if (failure || !std::filesystem::is_directory(output_dir_)) {
+    *err_ << name_ << ": error: --output: cannot create directory " << output_dir_ << ": "
+          << (failure ? failure.message() : "not a directory") << "\n";
+    return static_cast<int>(CLI::ExitCodes::FileError);
+  }
+  parsed_ = true;
+  summary_.clear();
+  summary("chapter", name_);
+  summary("title", title_);
+  summary("mode", quick_ ? "quick" : "full");
+  summary("threads", std::to_string(threads_ > 0 ? threads_ : omp_get_max_threads()));
+  return -1;
+}
+
+std::filesystem::path Chapter::figure_path(const std::string& file) const {
+  return output_dir_ / file;
+}
+
+// ---- Summary and checks -----------------------------------------------------------------------
+
+void Chapter::summary(const std::string& key, const std::string& value) {
+  if (!parsed_) {
+    throw std::logic_error("app::Chapter::summary(\"" + key + "\") called before parse()");
+  }
+  const bool good_key = !key.empty() && std::all_of(key.begin(), key.end(), [](char c) {
+    return std::isalnum(static_cast<unsigned char>(c)) || c == '_' || c == '-' || c == '.';
+  });
+  if (!good_key) {
+    throw std::invalid_argument("app::Chapter::summary: bad key \"" + key +
+                                "\" (use letters, digits, '_', '-', '.')");
+  }
+  std::string one_line = value;
+  std::replace(one_line.begin(), one_line.end(), '\n', ' ');
+  std::replace(one_line.begin(), one_line.end(), '\r', ' ');
+
+  auto same_key = [&key](const auto& entry) { return entry.first == key; };
+  if (auto entry = std::find_if(summary_.begin(), summary_.end(), same_key);
+      entry != summary_.end()) {
+    entry->second = one_line;
+  } else {
+    summary_.emplace_back(key, one_line);
+  }
+  write_summary();
+}
+
+void Chapter::write_summary() const {
+  // Write a temporary file and rename it, so a reader never sees half a summary.
+  const std::filesystem::path path = output_dir_ / "summary.txt";
+  const std::filesystem::path temporary = output_dir_ / "summary.txt.tmp";
+  {
+    std::ofstream file(temporary);
+    file << "# " << title_ << ": summary written by the program (key = value)\n";
+    for (const auto& [key, value] : summary_) {
+      file << key << " = " << value << "\n";
+    }
+    if (!file) {
+      throw std::runtime_error("cannot write " + temporary.string());
+    }
+  }
+  std::filesystem::rename(temporary, path);
+}
+
+bool Chapter::check(bool ok, const std::string& message) {
+  checks_.push_back({ok, message});
+  if (!ok) {
+    *err_ << name_ << ": check failed: " << message << "\n" << std::flush;
+  }
+  return ok;
+}
+
+int Chapter::failed_checks() const {
+  return static_cast<int>(
+      std::count_if(checks_.begin(), checks_.end(), [](const Check& c) { return !c.ok; }));
+}
+
+int Chapter::finish() {
+  const int failed = failed_checks();
+  const int total = static_cast<int>(checks_.size());
+  if (parsed_) {
+    summary("checks", std::to_string(total - failed) + " passed, " + std::to_string(failed) +
+                          " failed");
+    char seconds[32];
+    std::snprintf(seconds, sizeof seconds, "%.3f s", clock_.seconds());
+    summary("run_time", seconds);
+  }
+  if (failed == 0) {
+    if (total > 0) {
+      *out_ << "All " << total << (total == 1 ? " check" : " checks") << " passed.\n"
+            << std::flush;
+    }
+    return 0;
+  }
+  *err_ << name_ << ": error: " << failed << " of " << total
+        << (total == 1 ? " check" : " checks") << " failed:\n";
+  for (const Check& c : checks_) {
+    if (!c.ok) *err_ << "  - " << c.message << "\n";
+  }
+  *err_ << std::flush;
+  return 1;
+}
+
+void Chapter::set_streams(std::ostream& out, std::ostream& err) {
+  out_ = &out;
+  err_ = &err;
+}
+
+void report_exception(const char* what) noexcept {
+  try {
+    std::cout << std::flush;
+    std::cerr << "error: " << what << std::endl;
+  } catch (...) {
+    std::fputs("error: (message could not be printed)\n", stderr);
+  }
+}
+
+}  // namespace app

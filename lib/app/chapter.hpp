@@ -1,0 +1,234 @@
+#pragma once
+/// \file
+/// \brief app::Chapter: what every chapter program shares — its command line, its output
+/// directory, its summary file and its checks — and app::run_main, which turns any exception
+/// into a clear message and a non-zero exit.
+///
+/// A chapter program reads like this:
+///
+/// \code
+/// #include "app/chapter.hpp"
+///
+/// int main(int argc, char** argv) {
+///   return app::run_main([&] {
+///     app::Chapter chapter("03-sod", "Chapter 3: the Sod shock tube", argc, argv);
+///     double gamma = 1.4;
+///     int particles = 450;
+///     double t_end = 0.2;
+///     chapter.parameter("--gamma", gamma, "adiabatic index").check(app::greater_than(1.0));
+///     chapter.parameter("--particles", particles, "particles on the high-density side")
+///         .check(app::at_least(10));
+///     chapter.parameter("--t-end", t_end, "end time").check(app::positive());
+///     if (int rc = chapter.parse(); rc >= 0) return rc;   // --help, or a bad option
+///     if (chapter.quick()) particles = 50;
+///
+///     app::Progress progress(t_end, "Sod 1D");
+///     // ... for each step: progress.update(step, t, dt);
+///     progress.finish();
+///     // ... plot into chapter.figure_path("sod_1d.png")
+///
+///     double l1 = 0.0021;
+///     chapter.summary("error", "L1(rho) = " + std::to_string(l1));
+///     chapter.check(l1 < 0.003, "L1(rho) = " + std::to_string(l1) + " exceeds 0.003");
+///     return chapter.finish();   // non-zero if a check failed
+///   });
+/// }
+/// \endcode
+///
+/// Every chapter understands `--help`, `--quick`, `--output DIR` and `--threads N`, plus its own
+/// parameters.  An unknown option or an impossible value stops the program before it runs,
+/// with a message on standard error naming the option and the problem, and a non-zero exit
+/// status (CLI11's exit codes: 105 for a rejected value, 109 for an unknown option, ...).
+
+#include <CLI/CLI.hpp>
+
+#include <filesystem>
+#include <functional>
+#include <iostream>
+#include <string>
+#include <type_traits>
+#include <utility>
+#include <vector>
+
+#include "app/progress.hpp"
+#include "app/stopwatch.hpp"
+
+namespace app {
+
+/// \name Validators for parameter values
+/// Each produces a message such as `--gamma: must be greater than 1, got 0.5`.
+/// Use them as `chapter.parameter("--gamma", gamma, "...").check(app::greater_than(1.0))`.
+/// @{
+
+/// Accepts any finite number (rejects `nan`, `inf`).  Added to every floating-point parameter.
+CLI::Validator finite();
+/// Accepts whole numbers (rejects `3.5`).  Added to every integer parameter.
+CLI::Validator whole_number();
+/// Accepts numbers > 0.
+CLI::Validator positive();
+/// Accepts numbers >= 0.
+CLI::Validator non_negative();
+/// Accepts numbers > \p bound.
+CLI::Validator greater_than(double bound);
+/// Accepts numbers >= \p bound.
+CLI::Validator at_least(double bound);
+/// Accepts numbers < \p bound.
+CLI::Validator less_than(double bound);
+/// Accepts numbers <= \p bound.
+CLI::Validator at_most(double bound);
+/// Accepts numbers in the closed interval [\p low, \p high].
+CLI::Validator between(double low, double high);
+
+/// Accepts a value of type \p T for which \p predicate is true; otherwise the message is
+/// "<option>: <problem>, got <value>".  Example:
+/// `.check(app::require<int>([](int n) { return n % 2 == 0; }, "must be even"))`.
+template <class T>
+CLI::Validator require(std::function<bool(const T&)> predicate, std::string problem) {
+  return CLI::Validator(
+      [predicate = std::move(predicate), problem](std::string& input) -> std::string {
+        T value{};
+        if (!CLI::detail::lexical_cast(input, value)) {
+          return "cannot read '" + input + "' as a value of this option";
+        }
+        return predicate(value) ? std::string() : problem + ", got " + input;
+      },
+      problem);
+}
+/// @}
+
+/// The command line, output directory, summary file and checks of one chapter program.
+///
+/// Lifecycle: construct, declare parameters with parameter() / flag() / require(), call
+/// parse() and return its code if it is >= 0, run the scene, write figures to figure_path(),
+/// record numbers with summary() and verdicts with check(), and return finish().
+class Chapter {
+ public:
+  /// A chapter called \p name (its directory name, e.g. `"01-kernel"`, which is also the
+  /// default output directory `figures/01-kernel` in the source tree) with the heading
+  /// \p title shown by `--help`.  \p argc and \p argv are main()'s; they are read by parse().
+  Chapter(std::string name, std::string title, int argc, char** argv);
+
+  /// Declares a scene parameter `flag` (e.g. `"--gamma"`, `"-n,--neighbours"`) bound to
+  /// \p value, whose current value is the default shown by `--help`.  Floating-point values
+  /// must be finite, integers whole.  Returns the CLI11 option, so validators can be attached:
+  /// `.check(app::positive())`.  A flag without a leading dash throws std::invalid_argument.
+  template <class T>
+  CLI::Option& parameter(const std::string& flag, T& value, const std::string& description) {
+    require_dashes(flag);
+    CLI::Option* option = cli_.add_option(flag, value, description);
+    option->capture_default_str()->group("Scene parameters");
+    if constexpr (std::is_floating_point_v<T>) {
+      option->check(finite());
+    } else if constexpr (std::is_integral_v<T> && !std::is_same_v<T, bool>) {
+      option->check(whole_number());
+    }
+    return *option;
+  }
+
+  /// Declares an on/off switch `flag` (e.g. `"--no-viscosity"`) that sets \p value to true.
+  CLI::Option& flag(const std::string& flag, bool& value, const std::string& description);
+
+  /// Declares a condition between parameters that parse() checks after reading them, e.g.
+  /// `chapter.require([&] { return h_min < h_max; }, "--h-min must be smaller than --h-max")`.
+  void require(std::function<bool()> condition, std::string problem);
+
+  /// Reads the command line.  Returns -1 when the program should go on; otherwise the exit
+  /// status to return from main(): 0 after `--help`, non-zero after an error, which has been
+  /// reported on standard error.  On success it applies `--threads`, creates the output
+  /// directory and starts summary.txt there.
+  [[nodiscard]] int parse();
+
+  /// True with `--quick`: a reduced resolution that runs in seconds, used by the tests.
+  [[nodiscard]] bool quick() const { return quick_; }
+  /// The `--threads` value; 0 means all the machine's cores (OpenMP's default).
+  [[nodiscard]] int threads() const { return threads_; }
+  /// The directory for figures and summary.txt (`--output`), created by parse().
+  [[nodiscard]] const std::filesystem::path& output_dir() const { return output_dir_; }
+  /// The path of a figure (or any output file) called \p file in the output directory.
+  [[nodiscard]] std::filesystem::path figure_path(const std::string& file) const;
+  /// The chapter's name, e.g. `"01-kernel"`.
+  [[nodiscard]] const std::string& name() const { return name_; }
+  /// The chapter's title, e.g. `"Chapter 1: the smoothing kernel"`.
+  [[nodiscard]] const std::string& title() const { return title_; }
+  /// Wall-clock seconds since the chapter object was created.
+  [[nodiscard]] double seconds() const { return clock_.seconds(); }
+  /// The underlying CLI11 application, for anything the helpers above do not cover.
+  CLI::App& cli() { return cli_; }
+
+  /// Records `key = value` in `output_dir()/summary.txt`, which is rewritten at once (a later
+  /// value for the same key replaces the earlier one).  The figures runner shows the `error`
+  /// key in its table.  Keys are letters, digits, `_`, `-` and `.`; newlines in \p value become
+  /// spaces.  Call after parse().
+  void summary(const std::string& key, const std::string& value);
+
+  /// Records a verdict.  When \p ok is false, \p message (which should say what was found and
+  /// what was expected) is printed on standard error at once and again by finish(), and
+  /// finish() returns non-zero.  Returns \p ok.
+  bool check(bool ok, const std::string& message);
+
+  /// Number of failed checks so far.
+  [[nodiscard]] int failed_checks() const;
+
+  /// Ends the run: records the checks and the run time in summary.txt, prints "All N checks
+  /// passed." on standard output or the failed checks on standard error.  Returns the exit
+  /// status for main(): 0 if every check passed, 1 otherwise.
+  [[nodiscard]] int finish();
+
+  /// Sends the messages that would go to std::cout and std::cerr to other streams (tests).
+  void set_streams(std::ostream& out, std::ostream& err);
+
+ private:
+  void write_summary() const;
+  static void require_dashes(const std::string& flag);
+
+  struct Requirement {
+    std::function<bool()> condition;
+    std::string problem;
+  };
+  struct Check {
+    bool ok;
+    std::string message;
+  };
+
+  std::string name_;
+  std::string title_;
+  int argc_;
+  char** argv_;
+  CLI::App cli_;
+  Stopwatch clock_;
+  bool quick_ = false;
+  int threads_ = 0;
+  std::string output_arg_;
+  std::filesystem::path output_dir_;
+  bool parsed_ = false;
+  std::vector<Requirement> requirements_;
+  std::vector<std::pair<std::string, std::string>> summary_;
+  std::vector<Check> checks_;
+  std::ostream* out_ = &std::cout;
+  std::ostream* err_ = &std::cerr;
+};
+
+/// Prints "error: <what>" on standard error (used by run_main).
+void report_exception(const char* what) noexcept;
+
+/// Runs \p body (a callable returning the exit status, or void for 0) and turns any exception
+/// into "error: <what>" on standard error and exit status 1, so that bad input never crashes
+/// a program.  Use as `int main(int argc, char** argv) { return app::run_main([&] { ... }); }`.
+template <class Body>
+int run_main(Body&& body) noexcept {
+  try {
+    if constexpr (std::is_void_v<std::invoke_result_t<Body>>) {
+      std::forward<Body>(body)();
+      return 0;
+    } else {
+      return static_cast<int>(std::forward<Body>(body)());
+    }
+  } catch (const std::exception& error) {
+    report_exception(error.what());
+  } catch (...) {
+    report_exception("unknown exception");
+  }
+  return 1;
+}
+
+}  // namespace app

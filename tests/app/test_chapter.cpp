@@ -1,0 +1,263 @@
+// lib/app: the conventions every chapter program follows — options, errors, summary, checks.
+#include <catch2/catch.hpp>
+
+#include <filesystem>
+#include <fstream>
+#include <sstream>
+#include <stdexcept>
+#include <string>
+#include <vector>
+
+#include "app/chapter.hpp"
+
+namespace {
+
+namespace fs = std::filesystem;
+
+/// A command line that owns its strings and hands out main()-style argc/argv.
+struct CommandLine {
+  explicit CommandLine(std::vector<std::string> words) : words_(std::move(words)) {
+    for (std::string& word : words_) pointers_.push_back(word.data());
+    pointers_.push_back(nullptr);
+  }
+  int argc() const { return static_cast<int>(words_.size()); }
+  char** argv() { return pointers_.data(); }
+
+ private:
+  std::vector<std::string> words_;
+  std::vector<char*> pointers_;
+};
+
+/// A fresh output directory for one test.
+fs::path scratch(const std::string& name) {
+  const fs::path dir = fs::path(SPH_TEST_OUTPUT_DIR) / "app" / name;
+  fs::remove_all(dir);
+  return dir;
+}
+
+/// The result of parsing one command line with a chapter that has two parameters.
+struct Parsed {
+  int code;
+  std::string out;
+  std::string err;
+  double gamma;
+  int particles;
+  bool quick;
+};
+
+Parsed parse(std::vector<std::string> words) {
+  CommandLine line(std::move(words));
+  app::Chapter chapter("99-test", "Chapter 99: a test", line.argc(), line.argv());
+  std::ostringstream out, err;
+  chapter.set_streams(out, err);
+  double gamma = 1.4;
+  int particles = 450;
+  chapter.parameter("--gamma", gamma, "adiabatic index").check(app::greater_than(1.0));
+  chapter.parameter("--particles", particles, "particles").check(app::at_least(2));
+  const int code = chapter.parse();
+  return {code, out.str(), err.str(), gamma, particles, chapter.quick()};
+}
+
+std::string read(const fs::path& path) {
+  std::ifstream file(path);
+  std::stringstream text;
+  text << file.rdbuf();
+  return text.str();
+}
+
+}  // namespace
+
+TEST_CASE("a good command line parses and sets the parameters", "[app]") {
+  const fs::path dir = scratch("good");
+  const Parsed result = parse({"ch99", "--gamma", "1.6", "--particles=100", "--quick", "--output",
+                               dir.string()});
+  CHECK(result.code == -1);
+  CHECK(result.err.empty());
+  CHECK(result.gamma == 1.6);
+  CHECK(result.particles == 100);
+  CHECK(result.quick);
+  CHECK(fs::is_directory(dir));
+}
+
+TEST_CASE("--help prints the options and exits with zero", "[app]") {
+  const Parsed result = parse({"ch99", "--help"});
+  CHECK(result.code == 0);
+  CHECK(result.out.find("Chapter 99: a test") != std::string::npos);
+  CHECK(result.out.find("--gamma") != std::string::npos);
+  CHECK(result.out.find("--quick") != std::string::npos);
+  CHECK(result.out.find("--threads") != std::string::npos);
+  CHECK(result.err.empty());
+}
+
+TEST_CASE("an unknown option is an error naming the option", "[app]") {
+  const Parsed result = parse({"ch99", "--gama", "1.6"});
+  CHECK(result.code > 0);
+  CHECK(result.err.find("--gama") != std::string::npos);
+  CHECK(result.err.find("error") != std::string::npos);
+}
+
+TEST_CASE("an impossible value is an error naming the option and the problem", "[app]") {
+  SECTION("below the bound") {
+    const Parsed result = parse({"ch99", "--gamma", "0.5"});
+    CHECK(result.code > 0);
+    CHECK(result.err.find("--gamma") != std::string::npos);
+    CHECK(result.err.find("must be greater than 1") != std::string::npos);
+  }
+  SECTION("not a number") {
+    const Parsed result = parse({"ch99", "--particles", "many"});
+    CHECK(result.code > 0);
+    CHECK(result.err.find("--particles") != std::string::npos);
+  }
+  SECTION("not finite") {
+    const Parsed result = parse({"ch99", "--gamma", "nan"});
+    CHECK(result.code > 0);
+    CHECK(result.err.find("--gamma") != std::string::npos);
+    CHECK(result.err.find("finite") != std::string::npos);
+  }
+  SECTION("a fraction for a whole number") {
+    const Parsed result = parse({"ch99", "--particles", "35.5"});
+    CHECK(result.code > 0);
+    CHECK(result.err.find("--particles: must be a whole number") != std::string::npos);
+  }
+  SECTION("a missing value") {
+    const Parsed result = parse({"ch99", "--gamma"});
+    CHECK(result.code > 0);
+    CHECK(result.err.find("--gamma") != std::string::npos);
+  }
+  SECTION("a negative thread count") {
+    const Parsed result = parse({"ch99", "--threads", "-2"});
+    CHECK(result.code > 0);
+    CHECK(result.err.find("--threads") != std::string::npos);
+  }
+}
+
+TEST_CASE("a parameter must be named with dashes", "[app]") {
+  CommandLine line({"ch99"});
+  app::Chapter chapter("99-test", "Chapter 99: a test", line.argc(), line.argv());
+  double gamma = 1.4;
+  CHECK_THROWS_AS(chapter.parameter("gamma", gamma, "adiabatic index"), std::invalid_argument);
+}
+
+TEST_CASE("a switch is off by default and on when given", "[app]") {
+  for (const bool given : {false, true}) {
+    std::vector<std::string> words{"ch99", "--output", scratch("flag").string()};
+    if (given) words.push_back("--no-viscosity");
+    CommandLine line(words);
+    app::Chapter chapter("99-test", "Chapter 99: a test", line.argc(), line.argv());
+    std::ostringstream out, err;
+    chapter.set_streams(out, err);
+    bool no_viscosity = false;
+    chapter.flag("--no-viscosity", no_viscosity, "switch the viscosity off");
+    REQUIRE(chapter.parse() == -1);
+    CHECK(no_viscosity == given);
+  }
+}
+
+TEST_CASE("a condition between parameters is checked by parse", "[app]") {
+  CommandLine line({"ch99", "--h-min", "2", "--h-max", "1", "--output",
+                    scratch("require").string()});
+  app::Chapter chapter("99-test", "Chapter 99: a test", line.argc(), line.argv());
+  std::ostringstream out, err;
+  chapter.set_streams(out, err);
+  double h_min = 0.1, h_max = 1.0;
+  chapter.parameter("--h-min", h_min, "smallest smoothing length");
+  chapter.parameter("--h-max", h_max, "largest smoothing length");
+  chapter.require([&] { return h_min < h_max; }, "--h-min must be smaller than --h-max");
+  CHECK(chapter.parse() > 0);
+  CHECK(err.str().find("--h-min must be smaller than --h-max") != std::string::npos);
+}
+
+TEST_CASE("summary.txt holds key = value lines, later values replacing earlier", "[app]") {
+  const fs::path dir = scratch("summary");
+  CommandLine line({"ch99", "--output", dir.string()});
+  app::Chapter chapter("99-test", "Chapter 99: a test", line.argc(), line.argv());
+  std::ostringstream out, err;
+  chapter.set_streams(out, err);
+  REQUIRE(chapter.parse() == -1);
+  chapter.summary("error", "L1(rho) = 0.5");
+  chapter.summary("error", "L1(rho) = 0.0021 at N = 1800");
+  chapter.summary("note", "two\nlines");
+  CHECK_THROWS_AS(chapter.summary("bad key", "x"), std::invalid_argument);
+  CHECK(chapter.finish() == 0);
+
+  const std::string text = read(dir / "summary.txt");
+  CHECK(text.find("chapter = 99-test\n") != std::string::npos);
+  CHECK(text.find("mode = full\n") != std::string::npos);
+  CHECK(text.find("error = L1(rho) = 0.0021 at N = 1800\n") != std::string::npos);
+  CHECK(text.find("L1(rho) = 0.5") == std::string::npos);
+  CHECK(text.find("note = two lines\n") != std::string::npos);
+  CHECK(text.find("checks = 0 passed, 0 failed\n") != std::string::npos);
+  CHECK(text.find("run_time = ") != std::string::npos);
+}
+
+TEST_CASE("a failed check makes finish return non-zero and is reported", "[app]") {
+  const fs::path dir = scratch("checks");
+  CommandLine line({"ch99", "--output", dir.string()});
+  app::Chapter chapter("99-test", "Chapter 99: a test", line.argc(), line.argv());
+  std::ostringstream out, err;
+  chapter.set_streams(out, err);
+  REQUIRE(chapter.parse() == -1);
+  CHECK(chapter.check(true, "fine"));
+  CHECK_FALSE(chapter.check(false, "L1(rho) = 0.004 exceeds 0.003"));
+  CHECK(chapter.failed_checks() == 1);
+  CHECK(chapter.finish() != 0);
+  CHECK(err.str().find("1 of 2 checks failed") != std::string::npos);
+  CHECK(err.str().find("L1(rho) = 0.004 exceeds 0.003") != std::string::npos);
+  CHECK(read(dir / "summary.txt").find("checks = 1 passed, 1 failed") != std::string::npos);
+}
+
+TEST_CASE("all checks passing makes finish return zero", "[app]") {
+  CommandLine line({"ch99", "--output", scratch("pass").string()});
+  app::Chapter chapter("99-test", "Chapter 99: a test", line.argc(), line.argv());
+  std::ostringstream out, err;
+  chapter.set_streams(out, err);
+  REQUIRE(chapter.parse() == -1);
+  chapter.check(true, "fine");
+  CHECK(chapter.finish() == 0);
+  CHECK(out.str() == "All 1 check passed.\n");
+}
+
+TEST_CASE("run_main turns exceptions into exit status 1 and a message", "[app]") {
+  CHECK(app::run_main([] { return 0; }) == 0);
+  CHECK(app::run_main([] { return 3; }) == 3);
+  CHECK(app::run_main([] {}) == 0);
+
+  // Catch what run_main writes to std::cerr.
+  std::ostringstream captured;
+  std::streambuf* const original = std::cerr.rdbuf(captured.rdbuf());
+  const int from_error =
+      app::run_main([]() -> int { throw std::runtime_error("particle 7 has negative mass"); });
+  const int from_other = app::run_main([]() -> int { throw 42; });
+  std::cerr.rdbuf(original);
+
+  CHECK(from_error == 1);
+  CHECK(from_other == 1);
+  CHECK(captured.str() == "error: particle 7 has negative mass\nerror: unknown exception\n");
+}
+
+TEST_CASE("progress reports a final line and a status line with an estimate", "[app]") {
+  std::ostringstream live, report;
+  app::ProgressDisplay display;
+  display.live = &live;
+  display.report = &report;
+  display.delay_seconds = 0.0;
+  display.refresh_seconds = 0.0;
+  {
+    app::Progress progress(1.0, "test run", display);
+    progress.update(0, 0.25, 0.25);
+    progress.update(1, 0.5, 0.25);
+    CHECK(progress.steps() == 2);
+    CHECK(progress.status_line().find("step 2") != std::string::npos);
+    CHECK(progress.status_line().find("ETA") != std::string::npos);
+    progress.finish();
+  }
+  CHECK(live.str().find("test run: step") != std::string::npos);
+  CHECK(report.str().rfind("test run: 2 steps to t = 0.5 in ", 0) == 0);
+}
+
+TEST_CASE("durations read naturally", "[app]") {
+  CHECK(app::format_duration(0.4213) == "0.42 s");
+  CHECK(app::format_duration(12.34) == "12.3 s");
+  CHECK(app::format_duration(245.0) == "4 min 05 s");
+  CHECK(app::format_duration(7380.0) == "2 h 03 min");
+}
