@@ -13,6 +13,7 @@
 
 #include "sph/dimension.hpp"
 
+#include <cmath>
 #include <numbers>
 
 namespace sph {
@@ -77,6 +78,22 @@ struct WendlandC2 {
     }
   }
 };
+
+/// The density of an infinite 1D lattice of unit spacing and unit masses with the M4 kernel at
+/// h = eta (times the spacing), by Poisson summation rather than by summing the kernel: the M4
+/// is the cubic B-spline of knot spacing h, whose Fourier transform is
+/// \f$ (\sin(kh/2)/(kh/2))^4 \f$, so the lattice sum is
+/// \f$ 1 + 2\sum_{k \ge 1} \mathrm{sinc}^4(\pi k \eta) \f$.  It shares no code with the density
+/// pass, which makes it a check on it (chapter 2, tests/sph/test_density.cpp).
+inline double m4_lattice_density_1d(double eta) {
+  double sum = 1.0;
+  for (int k = 1; k < 200000; ++k) {
+    const double x = std::numbers::pi * k * eta;
+    const double sinc = std::sin(x) / x;
+    sum += 2.0 * sinc * sinc * sinc * sinc;
+  }
+  return sum;
+}
 
 /// A kernel shape with its D-dimensional normalisation: the evaluator the passes call.
 template <int D, class Shape = CubicSpline>

@@ -20,18 +20,9 @@ namespace {
 using sph::LatticeType;
 using sph::Vec;
 
-// The 1D M4 kernel is the cubic B-spline of knot spacing h, whose Fourier transform is
-// (sin(kh/2)/(kh/2))^4.  By Poisson summation the density of a 1D lattice of spacing dx and
-// mass m = dx (so rho = 1 in the continuum) is 1 + 2 sum_{k>=1} sinc^4(pi k h/dx): a formula
-// that shares no code with the density pass.
-double lattice_density_1d(double h_over_dx) {
-  double sum = 1.0;
-  for (int k = 1; k < 200000; ++k) {
-    const double x = std::numbers::pi * k * h_over_dx;
-    sum += 2.0 * std::pow(std::sin(x) / x, 4);
-  }
-  return sum;
-}
+// The 1D lattice density by Poisson summation (sph::m4_lattice_density_1d): a formula that
+// shares no code with the density pass.
+double lattice_density_1d(double h_over_dx) { return sph::m4_lattice_density_1d(h_over_dx); }
 
 // Relative error with an absolute floor (NaN fails).
 bool close(double value, double expected, double relative, double floor = 1e-300) {
