@@ -25,7 +25,8 @@
 /// **Time step.** Selhammar eq 7:
 /// \f$ \delta t = \min_i \varepsilon h_i / (|\mathbf v_i| + c_i + 1.2(\alpha c_i + \beta\mu_{i,\max})) \f$
 /// with \f$ \varepsilon = 0.3 \f$, plus an acceleration limit
-/// \f$ \varepsilon\sqrt{h_i/|\mathbf a_i|} \f$.  As printed, eq 7 uses the particle's own
+/// \f$ \varepsilon\sqrt{h_i/|\mathbf a_i|} \f$ and a cooling limit
+/// \f$ \varepsilon\, u_i/|\dot u_i| \f$ where \f$ \dot u_i < 0 \f$.  As printed, eq 7 uses the particle's own
 /// speed \f$ |\mathbf v_i| \f$, so the step depends on the frame of reference; the
 /// signal-velocity alternative replaces \f$ |\mathbf v_i| \f$ by nothing (it is Galilean
 /// invariant: only relative velocities, through \f$ \mu \f$, enter).  The limiting criterion
@@ -73,7 +74,7 @@ struct Settings {
 
 /// Which criterion set the last time step, and where.
 struct TimestepLimit {
-  std::string criterion;  ///< "Courant (eq 7)", "acceleration", "output time"
+  std::string criterion;  ///< "Courant (eq 7)", "acceleration", "cooling", "output time"
   std::size_t particle = 0;
   double dt = 0;
 };
@@ -133,6 +134,14 @@ class Simulation {
       if (a > 0) {
         const double dt = settings_.courant * std::sqrt(h / a);
         if (dt < best.dt) best = {"acceleration", i, dt};
+      }
+      // Cooling: an explicit step must not remove more than a fraction of u (without it, an
+      // inviscid collision can drive u negative in one step; chapter 3).
+      if constexpr (evolve_energy) {
+        if (p.energy_rate[i] < 0 && p.internal_energy[i] > 0) {
+          const double dt = settings_.courant * p.internal_energy[i] / -p.energy_rate[i];
+          if (dt < best.dt) best = {"cooling", i, dt};
+        }
       }
     }
     return best;
