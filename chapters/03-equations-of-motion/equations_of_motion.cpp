@@ -477,14 +477,16 @@ SodResult<D> measure(SodRun<D> run, const SodScene& scene, const Reference& own)
 /// returned figure's panels before it is saved.
 
 template <int D>
-plot::Figure sod_figure(const SodRun<D>& run, const SodScene& scene, const std::string& title, const std::string& scheme) {
+plot::Figure sod_figure(const SodRun<D>& run, const SodScene& scene, const std::string& title, const std::string& scheme,
+                        const std::string& exact_label = "exact") {
   const plot::Stamp stamp{.scheme = scheme,
                           .kernel = "M4",
                           .neighbours = scene.neighbours,
                           .particles = run.in_window,
                           .run_time = run.seconds,
                           .extra = "h = N m/(4\\rho), t = " + say("%g", scene.t_end)};
-  return app::shock_tube_figure({app::make_profile<D>(run.particles, "SPH")}, run.exact, scene.t_end, title, stamp);
+  return app::shock_tube_figure({app::make_profile<D>(run.particles, "SPH")}, run.exact, scene.t_end, title, stamp,
+                                -0.5, 0.5, exact_label);
 }
 
 /// A reference's exact \f$ \rho, v_x, P, u \f$ as dashed lines in the four panels.
@@ -862,7 +864,8 @@ int main(int argc, char** argv) {
         .save_png(chapter.figure_path("sod_monaghan_gingold.png").string());
     figure = sod_figure(printed.run, sod,
                         "Selhammar's eq 4 as printed: Sod's exact solution (red) and the prediction (blue)",
-                        "SPH, bracket P_{ij}/\\rho_{ij}^2 (eq 4 as printed), no viscosity");
+                        "SPH, bracket P_{ij}/\\rho_{ij}^2 (eq 4 as printed), no viscosity",
+                        "exact, Sod (\\gamma = 1.4)");
     add_reference_lines(figure, printed_gas, sod.t_end, "prediction: \\gamma' = 1.2, P' = P/2", plot::blue);
     figure.save_png(chapter.figure_path("sod_as_printed.png").string());
 

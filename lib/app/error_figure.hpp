@@ -144,7 +144,7 @@ inline void draw_panel(plot::Axes& axes, const sph::ErrorVsTime& study, const st
     axes.line(seconds, error, {.label = legend_label(study, methods[k], quantity), .style = dash_of(k),
                                .width = 1.6, .marker = marker_of(k), .marker_size = 8.0});
   }
-  axes.legend(plot::Corner::upper_right);
+  axes.legend(plot::Corner::best);  // the corner that covers the fewest points
 }
 
 }  // namespace error_figure_detail

@@ -44,9 +44,12 @@ Profile make_profile(const sph::Particles<D>& p, std::string label, double x_min
 }
 
 /// Draw rho, v, P, u (2 x 2 panels) of the profiles against the exact solution at time t.
+/// `exact_label` names the line (e.g. when it is the solution of another gas, as for the
+/// misprinted equations of chapter 3).
 inline plot::Figure shock_tube_figure(const std::vector<Profile>& profiles, const sph::RiemannSolution& exact,
                                       double t, const std::string& title, const plot::Stamp& stamp,
-                                      double x_min = -0.5, double x_max = 0.5) {
+                                      double x_min = -0.5, double x_max = 0.5,
+                                      const std::string& exact_label = "exact") {
   sph::require(!profiles.empty(), "shock tube figure: no profiles to draw");
   // The exact solution on a fine grid (it has jumps: 4000 points resolve them to 0.03 % of the window).
   const int samples = 4000;
@@ -77,7 +80,7 @@ inline plot::Figure shock_tube_figure(const std::vector<Profile>& profiles, cons
     for (const Profile& prof : profiles) {
       ax.scatter(prof.x, prof.*(panels[k].values), {.label = prof.label, .color = prof.color, .size = prof.size});
     }
-    ax.line(xs, panels[k].exact_values, {.label = "exact", .color = plot::red, .style = plot::Dash::solid, .width = 1.6});
+    ax.line(xs, panels[k].exact_values, {.label = exact_label, .color = plot::red, .style = plot::Dash::solid, .width = 1.6});
     if (k == 0) ax.legend(plot::Corner::upper_right);
   }
   return figure;
