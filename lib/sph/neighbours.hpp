@@ -122,6 +122,23 @@ class NeighbourSearch {
     require(n < (std::size_t{1} << 31), "neighbour search: too many particles");
     validate_rule(rule);
     if (rule.mode == SmoothingLengthRule::Mode::density) require_positive_masses(p, "smoothing length from density");
+    if (try_reuse(p, box, rule)) {
+      ++reuses_;
+      return;
+    }
+    full_search(p, box, rule);
+    ++searches_;
+  }
+
+  /// How many updates searched the grid, and how many reused the candidates of the last search.
+  long searches() const { return searches_; }
+  long reuses() const { return reuses_; }
+
+ private:
+  // The full search: grid, candidates within (1 + search_margin) 2h of every particle, h by the
+  // rule, the list.  It also records what a later update needs to reuse the candidates.
+  void full_search(Particles<D>& p, const Box<D>& box, const SmoothingLengthRule& rule) {
+    const std::size_t n = p.size();
     initial_guess(p, box, rule);
     grid_.build(p.position, box, cell_size(p.smoothing_length));
     const int threads = n < parallel_threshold ? 1 : omp_get_max_threads();
@@ -149,14 +166,23 @@ class NeighbourSearch {
     blocks_.resize(team);  // the runtime may have given fewer threads than asked for
     assemble_list(box);
     require_neighbours(p);
+    built_position_ = p.position;
+    previous_position_ = p.position;
+    unwrapped_ = p.position;
+    wrapped_.assign(n, std::array<int, D>{});
+    built_box_ = box;
+    built_mode_ = rule.mode;
+    reusable_ = true;
   }
 
+ public:
   const NeighbourList<D>& list() const { return list_; }
   const CellGrid<D>& grid() const { return grid_; }
 
-  /// Relative margin of the candidate search radius over 2h (candidates found beyond 2h let
-  /// the neighbour-number rule move h without a second search).
-  double search_margin = 0.1;
+  /// Relative margin of the candidate radius over 2h.  Candidates beyond 2h let the
+  /// neighbour-number rule move h without a second search, and let later steps reuse the
+  /// candidates while the particles have moved less than the margin (see try_reuse).
+  double search_margin = 0.2;
 
  private:
   struct Candidate {
@@ -170,6 +196,7 @@ class NeighbourSearch {
     std::size_t begin = 0, end = 0;
     std::vector<std::size_t> candidate_start;
     std::vector<Candidate> candidates;
+    std::vector<double> reach;  // the radius within which each particle's candidates are complete
     std::vector<std::size_t> kept_start;
     std::vector<Neighbour> kept;
     std::vector<std::pair<std::uint32_t, Neighbour>> reverse;  // (j, entry for j)
@@ -227,13 +254,119 @@ class NeighbourSearch {
     return fraction * K::support * median * (1.0 + search_margin);
   }
 
+  // --- Reusing the candidates of the last full search ------------------------------------
+  //
+  // A full search keeps, for each particle i, every j within R_i = (1 + margin) 2h_i.  Let d be
+  // the largest distance any particle has moved since, measured from the mean displacement of
+  // all of them (a common drift does not change any separation, since
+  // |D_i - D_j| <= |D_i - c| + |D_j - c| for any c).  A pair that is now closer than 2h_i
+  // was at most 2h_i + 2d apart then; so if 2h_i + 2d <= R_i for every i, the old candidates
+  // still hold every neighbour, and a step needs only their new distances -- no grid, no
+  // search.  The distances are taken between "unwrapped" positions (position at the search
+  // plus the displacements of every update since, each by the nearest periodic image), in which the images recorded
+  // at the search stay valid; a particle that has since crossed a periodic face gets its images
+  // translated when the list is written.  When the test fails for any particle, or the set,
+  // box or rule changed, the update falls back to a full search.  The outcome (and so every
+  // result) is the same for any number of threads.
+  bool try_reuse(Particles<D>& p, const Box<D>& box, const SmoothingLengthRule& rule) {
+    const std::size_t n = p.size();
+    if (!reusable_ || n != built_position_.size() || rule.mode != built_mode_ || !same_box(box, built_box_)) return false;
+    // Displacements since the search, and the whole periods between unwrapped and stored positions.
+    // Follow each particle since the last update by the nearest image (no particle crosses a
+    // quarter of a periodic box in one step: if one seems to, search again), and accumulate its
+    // unwrapped position; note how many periods it lies from its stored, wrapped position.
+    Vec<D> mean = Vec<D>::Zero();
+    for (std::size_t i = 0; i < n; ++i) {
+      const Vec<D> step = box.separation(p.position[i], previous_position_[i]);
+      for (int a = 0; a < D; ++a) {
+        if (box.periodic[a] && std::abs(step[a]) > 0.25 * box.length(a)) return false;
+      }
+      unwrapped_[i] += step;
+      previous_position_[i] = p.position[i];
+      mean += unwrapped_[i] - built_position_[i];
+      for (int a = 0; a < D; ++a) {
+        wrapped_[i][a] = box.periodic[a] ? static_cast<int>(std::lround((unwrapped_[i][a] - p.position[i][a]) / box.length(a))) : 0;
+      }
+    }
+    mean /= static_cast<double>(n);
+    double moved2 = 0;
+    for (std::size_t i = 0; i < n; ++i) moved2 = std::max(moved2, (unwrapped_[i] - built_position_[i] - mean).squaredNorm());
+    const double moved = std::sqrt(moved2);
+    int failed = 0;
+#pragma omp parallel num_threads(static_cast<int>(blocks_.size()))
+    {
+      const auto t = static_cast<std::size_t>(omp_get_thread_num());
+      if (static_cast<std::size_t>(omp_get_num_threads()) != blocks_.size()) {
+#pragma omp atomic write
+        failed = 1;
+      } else {
+        // Every particle is settled, even after one has failed: the h a failed attempt leaves
+        // behind is the start of the full search, and must not depend on the thread count.
+        Block& block = blocks_[t];
+        bool ok = true;
+        for (std::size_t i = block.begin; i < block.end; ++i) ok = settle_from_candidates(p, rule, block, i, moved) && ok;
+        if (!ok) {
+#pragma omp atomic write
+          failed = 1;
+        }
+      }
+#pragma omp barrier
+      if (!failed) keep_neighbours(p, blocks_[t], true);
+    }
+    if (failed) return false;
+    assemble_list(box);
+    require_neighbours(p);
+    return true;
+  }
+
+  // Refresh particle i's candidate distances and settle its h within the radius they still
+  // cover; false if that radius is not enough.
+  bool settle_from_candidates(Particles<D>& p, const SmoothingLengthRule& rule, Block& block, std::size_t i,
+                              double moved) {
+    const std::size_t first = block.candidate_start[i - block.begin], last = block.candidate_start[i - block.begin + 1];
+    const std::span<Candidate> found(block.candidates.data() + first, last - first);
+    for (Candidate& c : found) {
+      Vec<D> r = unwrapped_[i] - unwrapped_[c.index];
+      if (c.image != 0) r -= image_offset(c.image, built_box_);
+      c.r2 = r.squaredNorm();
+    }
+    const double covered = block.reach[i - block.begin] - 2.0 * moved;
+    double& h = p.smoothing_length[i];
+    bool settled = true;
+    if (rule.mode == SmoothingLengthRule::Mode::neighbour_number) settled = settle_by_count(rule, covered, found, h);
+    if (rule.mode == SmoothingLengthRule::Mode::density) settled = settle_by_density(p, rule, i, covered, found, h);
+    if (!settled || K::support * h > covered) return false;
+    p.neighbour_count[i] = count_within(found, K::support * h);
+    return true;
+  }
+
+  static Vec<D> image_offset(Image image, const Box<D>& box) {
+    Vec<D> o = Vec<D>::Zero();
+    for (int a = 0; a < D; ++a) {
+      if (box.periodic[a]) o[a] = image_shift(image, a) * box.length(a);
+    }
+    return o;
+  }
+
+  static bool same_box(const Box<D>& a, const Box<D>& b) {
+    return a.lower == b.lower && a.upper == b.upper && a.periodic == b.periodic;
+  }
+
+  // The image of candidate j of i in the frame of the stored (wrapped) positions.
+  Image current_image(Image built, std::size_t i, std::size_t j) const {
+    std::array<int, D> shift{};
+    for (int a = 0; a < D; ++a) shift[a] = image_shift(built, a) - wrapped_[i][a] + wrapped_[j][a];
+    return pack_image<D>(shift);
+  }
+
   // Phase 1 (per thread): gather candidates of each particle and settle its h.
   void find_candidates(Particles<D>& p, const SmoothingLengthRule& rule, Block& block) {
     block.candidate_start.clear();
     block.candidates.clear();
+    block.reach.clear();
     std::vector<Candidate> found;
     for (std::size_t i = block.begin; i < block.end; ++i) {
-      settle_particle(p, rule, i, found);
+      block.reach.push_back(settle_particle(p, rule, i, found));
       block.candidate_start.push_back(block.candidates.size());
       block.candidates.insert(block.candidates.end(), found.begin(), found.end());
     }
@@ -249,9 +382,10 @@ class NeighbourSearch {
     });
   }
 
-  // Choose h_i by the rule, growing the search radius until the candidates suffice.
-  void settle_particle(Particles<D>& p, const SmoothingLengthRule& rule, std::size_t i,
-                       std::vector<Candidate>& found) const {
+  // Choose h_i by the rule, growing the search radius until the candidates suffice; returns
+  // the radius searched.
+  double settle_particle(Particles<D>& p, const SmoothingLengthRule& rule, std::size_t i,
+                         std::vector<Candidate>& found) const {
     double& h = p.smoothing_length[i];
     double radius = K::support * h * (1.0 + search_margin);
     const double grid_extent = std::max(grid_.extent(), K::support * h);
@@ -267,7 +401,7 @@ class NeighbourSearch {
       }();
       if (settled) {
         p.neighbour_count[i] = count_within(found, K::support * h);
-        return;
+        return radius;
       }
       // Past a few times the grid's extent a wider search finds nothing new on open axes, and
       // only more periodic images on periodic ones: the target cannot be met sensibly.
@@ -282,7 +416,7 @@ class NeighbourSearch {
                 ": no smoothing length found (search radius grew to " + std::to_string(radius) + ")");
   }
 
-  static int count_within(const std::vector<Candidate>& found, double radius) {
+  static int count_within(std::span<const Candidate> found, double radius) {
     const double r2max = radius * radius;
     int count = 0;
     for (const auto& c : found) count += c.r2 < r2max;
@@ -292,8 +426,7 @@ class NeighbourSearch {
   // Neighbour-number rule: keep h while the count is within tolerance, else put 2h half-way
   // between the N-th and (N+1)-th nearest candidate.  False when the candidates do not reach
   // that far (the caller widens the search).
-  static bool settle_by_count(const SmoothingLengthRule& rule, double radius,
-                              std::vector<Candidate>& found, double& h) {
+  static bool settle_by_count(const SmoothingLengthRule& rule, double radius, std::span<Candidate> found, double& h) {
     const int count = count_within(found, K::support * h);
     if (std::abs(count - rule.neighbours) <= rule.tolerance && K::support * h <= radius) return true;
     const auto n = static_cast<std::size_t>(std::llround(rule.neighbours));
@@ -302,26 +435,29 @@ class NeighbourSearch {
     std::nth_element(found.begin(), found.begin() + static_cast<std::ptrdiff_t>(n - 1), found.end(), by_distance);
     const double rn = std::sqrt(found[n - 1].r2);
     const double rn1 = std::sqrt(std::min_element(found.begin() + static_cast<std::ptrdiff_t>(n), found.end(), by_distance)->r2);
+    // Beyond `radius` the candidates may be incomplete, so order statistics there are not known.
+    if (rn1 > radius) return false;
     // Distances that differ by round-off only form one shell (a lattice): no 2h separates them.
     const double tie = 1e-10 * rn1;
     if (rn1 - rn > tie) {
       h = 0.5 * (rn + rn1) / K::support;
       return true;
     }
-    return settle_on_shell(rule.neighbours, rn, tie, found, h);
+    return settle_on_shell(rule.neighbours, rn, tie, radius, found, h);
   }
 
   // The N-th and (N+1)-th neighbours lie on one shell (equal distances, as on a lattice, or
   // coincident particles at r = 0).  No radius gives exactly N; put 2h in the gap just inside or
   // just outside the shell, whichever count is nearer N (outside on a tie, and always outside a
   // shell at r = 0, so h > 0).  False when the candidates end at the shell (widen the search).
-  static bool settle_on_shell(double target, double shell, double tie, std::vector<Candidate>& found, double& h) {
+  static bool settle_on_shell(double target, double shell, double tie, double radius, std::span<Candidate> found,
+                              double& h) {
     std::sort(found.begin(), found.end(), [](const Candidate& a, const Candidate& b) { return a.r2 < b.r2; });
     std::size_t inside = 0, through = 0;  // counts with r below the shell, and up to its outer edge
     while (inside < found.size() && std::sqrt(found[inside].r2) < shell - tie) ++inside;
     through = inside;
     while (through < found.size() && std::sqrt(found[through].r2) <= shell + tie) ++through;
-    if (through == found.size()) return false;
+    if (through == found.size() || std::sqrt(found[through].r2) > radius) return false;
     const bool take_inside = inside > 0 && std::abs(static_cast<double>(inside) - target) <
                                                std::abs(static_cast<double>(through) - target);
     const double r_gap = take_inside ? std::sqrt(found[inside - 1].r2) : std::sqrt(found[through].r2);
@@ -332,7 +468,7 @@ class NeighbourSearch {
   // Density rule: Newton iteration on f(h) = rho(h) h^D - N m / (V_D 2^D) = 0, with the gather
   // density rho(h) = sum_j m_j W(r_ij, h) + m_i W(0, h).  False when 2h leaves the candidates.
   static bool settle_by_density(const Particles<D>& p, const SmoothingLengthRule& rule, std::size_t i,
-                                double radius, const std::vector<Candidate>& found, double& h) {
+                                double radius, std::span<const Candidate> found, double& h) {
     const double target = rule.neighbours * p.mass[i] / (unit_ball_volume<D>() * power<D>(K::support));
     double h_new = h;
     for (int iteration = 0; iteration < rule.max_iterations; ++iteration) {
@@ -367,7 +503,7 @@ class NeighbourSearch {
 
   // Phase 2 (per thread, all h final): keep pairs with r_ij < 2 max(h_i, h_j).  A candidate
   // list covers r < 2h_i; a pair with 2h_i <= r < 2h_j is found from j's side and handed to i.
-  void keep_neighbours(const Particles<D>& p, Block& block) const {
+  void keep_neighbours(const Particles<D>& p, Block& block, bool reused = false) const {
     block.kept_start.clear();
     block.kept.clear();
     block.reverse.clear();
@@ -378,10 +514,11 @@ class NeighbourSearch {
       for (std::size_t c = block.candidate_start[i - block.begin]; c < block.candidate_start[i - block.begin + 1]; ++c) {
         const Candidate& cand = block.candidates[c];
         if (cand.r2 >= reach_i * reach_i) continue;
-        block.kept.push_back({cand.index, cand.image});
+        const Image image = reused ? current_image(cand.image, i, cand.index) : cand.image;
+        block.kept.push_back({cand.index, image});
         const double reach_j = K::support * h[cand.index];
         if (cand.r2 >= reach_j * reach_j) {
-          block.reverse.push_back({cand.index, {static_cast<std::uint32_t>(i), mirror_image<D>(cand.image)}});
+          block.reverse.push_back({cand.index, {static_cast<std::uint32_t>(i), mirror_image<D>(image)}});
         }
       }
     }
@@ -432,6 +569,15 @@ class NeighbourSearch {
   CellGrid<D> grid_;
   std::vector<Block> blocks_;
   NeighbourList<D> list_;
+  // What the last full search saw, for reusing its candidates.
+  bool reusable_ = false;
+  std::vector<Vec<D>> built_position_;
+  Box<D> built_box_;
+  SmoothingLengthRule::Mode built_mode_ = SmoothingLengthRule::Mode::fixed;
+  std::vector<Vec<D>> previous_position_;   // positions at the last update
+  std::vector<Vec<D>> unwrapped_;           // built position + displacement since, followed update by update
+  std::vector<std::array<int, D>> wrapped_;  // periods between unwrapped and stored position
+  long searches_ = 0, reuses_ = 0;
 };
 
 }  // namespace sph

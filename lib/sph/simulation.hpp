@@ -188,6 +188,8 @@ class Simulation {
   const Particles<D>& particles() const { return particles_; }
   Particles<D>& particles() { return particles_; }
   const NeighbourList<D>& neighbours() const { return search_.list(); }
+  /// The neighbour search, e.g. for how often it could reuse its candidates.
+  const NeighbourSearch<D, K>& neighbour_search() const { return search_; }
   const Box<D>& box() const { return box_; }
   const Eos& eos() const { return eos_; }
   const Viscosity& viscosity() const { return viscosity_; }
