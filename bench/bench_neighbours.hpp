@@ -6,6 +6,7 @@
 //   search, warm    the same with last step's h (the common case: most h stay in tolerance)
 //   density rule    h from the density (Newton, Watkins eq A6) + list, warm, then the density pass
 //   density pass    compute_density alone on the finished list
+//   reuse           the next update of the same search with the particles unmoved (no grid)
 // Each with 1 thread and with all threads, best of a few repetitions; reported as microseconds
 // per particle and nanoseconds per neighbour pair (an (i, j) list entry; each pair appears from
 // both sides, as the gather passes visit it).  The last column says whether the list and the
@@ -39,7 +40,7 @@ inline double best_seconds(int repeats, const std::function<void()>& prepare, co
 }
 
 struct Timings {
-  double grid = 0, cold = 0, warm = 0, density_rule = 0, density_pass = 0;  // seconds
+  double grid = 0, cold = 0, warm = 0, reuse = 0, density_rule = 0, density_pass = 0;  // seconds
   double entries = 0;                                                      // list entries
   std::vector<double> h, rho;                                              // for the bitwise check
 };
@@ -53,9 +54,15 @@ inline Timings time_stages(const sph::Particles<3>& start, const sph::Box<3>& bo
   sph::NeighbourSearch<3> search;
   const auto count_rule = sph::SmoothingLengthRule::neighbour_number(neighbours, 0.05 * neighbours);
   const auto density_rule = sph::SmoothingLengthRule::from_density(neighbours);
-  // Cold search: no smoothing lengths yet.
+  // Cold search: no smoothing lengths yet.  Every timed search is a full one (a search that has
+  // searched before would otherwise reuse its candidates, timed separately as "reuse").
+  search.update(p, box, count_rule);  // first touch of the buffers, not timed
   t.cold = best_seconds(
-      repeats, [&] { std::fill(p.smoothing_length.begin(), p.smoothing_length.end(), 0.0); },
+      repeats,
+      [&] {
+        std::fill(p.smoothing_length.begin(), p.smoothing_length.end(), 0.0);
+        search.forget_candidates();
+      },
       [&] { search.update(p, box, count_rule); });
   // Grid build alone, with the cell size the search chooses (half the search radius in 3D).
   std::vector<double> h = p.smoothing_length;
@@ -63,12 +70,14 @@ inline Timings time_stages(const sph::Particles<3>& start, const sph::Box<3>& bo
   const double cell = 0.5 * 2.0 * h[h.size() / 2] * (1.0 + search.search_margin);
   sph::CellGrid<3> grid;
   t.grid = best_seconds(repeats, [] {}, [&] { grid.build(p.position, box, cell); });
-  // Warm search: h from the previous call, within tolerance.
-  t.warm = best_seconds(repeats, [] {}, [&] { search.update(p, box, count_rule); });
+  // Warm search: h from the previous call, within tolerance; a full search all the same.
+  t.warm = best_seconds(repeats, [&] { search.forget_candidates(); }, [&] { search.update(p, box, count_rule); });
+  // Reuse: the same search again, particles unmoved (the cost of a step that reuses).
+  t.reuse = best_seconds(repeats, [] {}, [&] { search.update(p, box, count_rule); });
   t.entries = static_cast<double>(search.list().entries());
-  // Density rule (warm: start from its own previous h), then the density pass.
+  // Density rule (warm: start from its own previous h, full search), then the density pass.
   search.update(p, box, density_rule);
-  t.density_rule = best_seconds(repeats, [] {}, [&] {
+  t.density_rule = best_seconds(repeats, [&] { search.forget_candidates(); }, [&] {
     search.update(p, box, density_rule);
     sph::compute_density(p, search.list(), sph::DensityForm::watkins());
   });
@@ -107,6 +116,7 @@ inline void bench_neighbours(bool quick) {
   row("grid build", one.grid, all.grid);
   row("search, cold (h from nothing)", one.cold, all.cold);
   row("search, warm (N +- 5 %)", one.warm, all.warm);
+  row("reuse of the candidates (unmoved)", one.reuse, all.reuse);
   row("density rule + density, warm", one.density_rule, all.density_rule);
   row("density pass alone", one.density_pass, all.density_pass);
   std::printf("h and density identical for 1 and %d threads: %s\n", threads,

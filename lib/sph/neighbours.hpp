@@ -130,6 +130,10 @@ class NeighbourSearch {
     ++searches_;
   }
 
+  /// Make the next update a full search (the reuse test covers motion, not particles moved or
+  /// replaced by hand; it is safe to call this after such a change).
+  void forget_candidates() { reusable_ = false; }
+
   /// How many updates searched the grid, and how many reused the candidates of the last search.
   long searches() const { return searches_; }
   long reuses() const { return reuses_; }
