@@ -94,7 +94,7 @@ TEST_CASE("the density pass equals a brute-force sum over all periodic images", 
   }
 }
 
-TEST_CASE("the self term is m W(0, h); pair-averaged equals gather at constant h and mass", "[density]") {
+TEST_CASE("the self term is m W(0, h), and pair-averaged equals gather at constant h and mass", "[density]") {
   const auto box = sph::Box<3>::periodic_box(Vec<3>::Zero(), Vec<3>::Ones());
   auto p = random_set(2000, 0.07, 2);
   sph::NeighbourSearch<3> search;

@@ -44,7 +44,7 @@ double spread(const std::vector<double>& v) {
 
 }  // namespace
 
-TEST_CASE("SplitMix64 is reproducible and uniform on [0, 1)", "[initial_conditions]") {
+TEST_CASE("SplitMix64 is reproducible and uniform on the unit interval", "[initial_conditions]") {
   sph::Random a(42), b(42), c(43);
   double sum = 0, square = 0;
   const int n = 200000;

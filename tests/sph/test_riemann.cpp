@@ -300,7 +300,7 @@ TEST_CASE("Extreme cases: near vacuum, strong shocks, cold gas", "[riemann]") {
   }
 }
 
-TEST_CASE("Sampling at t = 0 gives the initial data; describe() names the pattern", "[riemann]") {
+TEST_CASE("Sampling at t = 0 gives the initial data, and describe() names the pattern", "[riemann]") {
   const RiemannSolution sod({1.0, 0.0, 1.0}, {0.125, 0.0, 0.1}, 1.4, 0.5);
   CHECK(sod.sample(0.4, 0.0).density == 1.0);
   CHECK(sod.sample(0.6, 0.0).density == 0.125);
