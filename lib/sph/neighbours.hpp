@@ -36,6 +36,7 @@
 #include <omp.h>
 
 #include <algorithm>
+#include <limits>
 #include <cstdint>
 #include <span>
 #include <string>
@@ -456,15 +457,27 @@ class NeighbourSearch {
   // shell at r = 0, so h > 0).  False when the candidates end at the shell (widen the search).
   static bool settle_on_shell(double target, double shell, double tie, double radius, std::span<Candidate> found,
                               double& h) {
-    std::sort(found.begin(), found.end(), [](const Candidate& a, const Candidate& b) { return a.r2 < b.r2; });
+    // Counts below and up to the shell, and the nearest distances on either side, in one pass
+    // (no sort: on a lattice every particle lands here every step).
+    const double below = shell - tie;  // negative for a shell at r = 0: nothing is inside it
+    const double below2 = below > 0 ? below * below : -1.0, above2 = (shell + tie) * (shell + tie);
     std::size_t inside = 0, through = 0;  // counts with r below the shell, and up to its outer edge
-    while (inside < found.size() && std::sqrt(found[inside].r2) < shell - tie) ++inside;
-    through = inside;
-    while (through < found.size() && std::sqrt(found[through].r2) <= shell + tie) ++through;
-    if (through == found.size() || std::sqrt(found[through].r2) > radius) return false;
+    double r_in2 = 0, r_out2 = std::numeric_limits<double>::infinity();
+    for (const Candidate& c : found) {
+      if (c.r2 < below2) {
+        ++inside;
+        r_in2 = std::max(r_in2, c.r2);
+      }
+      if (c.r2 <= above2) {
+        ++through;
+      } else {
+        r_out2 = std::min(r_out2, c.r2);
+      }
+    }
+    if (through == found.size() || std::sqrt(r_out2) > radius) return false;
     const bool take_inside = inside > 0 && std::abs(static_cast<double>(inside) - target) <
                                                std::abs(static_cast<double>(through) - target);
-    const double r_gap = take_inside ? std::sqrt(found[inside - 1].r2) : std::sqrt(found[through].r2);
+    const double r_gap = std::sqrt(take_inside ? r_in2 : r_out2);
     h = 0.5 * (shell + r_gap) / K::support;
     return true;
   }
