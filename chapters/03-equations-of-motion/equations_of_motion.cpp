@@ -486,7 +486,7 @@ plot::Figure sod_figure(const SodRun<D>& run, const SodScene& scene, const std::
                           .run_time = run.seconds,
                           .extra = "h = N m/(4\\rho), t = " + say("%g", scene.t_end)};
   return app::shock_tube_figure({app::make_profile<D>(run.particles, "SPH")}, run.exact, scene.t_end, title, stamp,
-                                -0.5, 0.5, exact_label);
+                                {.exact_label = exact_label});
 }
 
 /// A reference's exact \f$ \rho, v_x, P, u \f$ as dashed lines in the four panels.

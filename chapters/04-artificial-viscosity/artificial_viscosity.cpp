@@ -123,15 +123,6 @@ TubeRun<D> run_tube(const sph::ShockTubeSetup& setup, const sph::SmoothingLength
   return run;
 }
 
-/// The number of particles inside the measured window \f$ |x| \le 0.5 \f$: the number we
-/// quote as "N" when we compare with other codes, which run a tube of that length.
-template <int D>
-int window_count(const sph::Particles<D>& p) {
-  int n = 0;
-  for (const auto& x : p.position) n += std::abs(x[0]) <= 0.5;
-  return n;
-}
-
 std::string format(const char* pattern, double a, double b = 0, double c = 0, double d = 0) {
   char text[256];
   std::snprintf(text, sizeof text, pattern, a, b, c, d);
@@ -292,7 +283,9 @@ int main(int argc, char** argv) {
       sod.left_spacing = 1.0 / resolution;
       TubeRun<1> run = run_tube<1>(sod, rule_1d, viscosity, par.t_end, "Sod 1D");
       const auto errors = sph::shock_tube_errors(run.particles, run.exact, par.t_end);
-      const int n_window = window_count(run.particles);
+      // The particles in the measured window |x| <= 0.5: the "N" we compare with codes that run
+      // a tube of that length.
+      const auto n_window = static_cast<int>(errors[0].count);
       const char* reference = n_window < 1000 ? "0.0032 at 457" : "0.0016 at 1807";
       std::printf("  %9d %8zu %6ld %9.3f  %.3e  %.3e  %.3e   %-14s  %s\n", n_window, run.particles.size(), run.steps,
                   run.seconds, errors[0].L1, errors[1].L1, errors[2].L1, ("<= " + format("%g", target)).c_str(), reference);
@@ -493,37 +486,12 @@ int main(int argc, char** argv) {
                   100 * shocked, 100 * disturbed);
       chapter.summary("mg_velocity_scatter", format("%.3f", shocked));
       chapter.check(shocked < 0.15, "MG tube: velocity scatter " + format("%.3f", shocked) + " not below the papers' 15 %");
-      // The particles of the plotted window only (beyond it are the far interface's waves).
-      std::vector<double> x, rho, vx, u;
-      for (std::size_t i = 0; i < mg_run.particles.size(); ++i) {
-        if (std::abs(mg_run.particles.position[i][0]) > 0.6) continue;
-        x.push_back(mg_run.particles.position[i][0]);
-        rho.push_back(mg_run.particles.density[i]);
-        vx.push_back(v[i]);
-        u.push_back(mg_run.particles.internal_energy[i]);
-      }
-      std::vector<double> xs, rho_e, v_e, u_e;
-      for (int k = 0; k <= 3000; ++k) {
-        xs.push_back(-0.6 + 1.2 * k / 3000);
-        const sph::GasState w = mg_run.exact.sample(xs.back(), par.t_end);
-        rho_e.push_back(w.density);
-        v_e.push_back(w.velocity);
-        u_e.push_back(mg_run.exact.internal_energy(xs.back(), par.t_end));
-      }
-      plot::Figure fig(3, 1, {.width = 1000, .height = 1350});
-      fig.title("Monaghan & Gingold (1983) tube, 3D, standard AV (cf. Watkins et al. 1996, Fig. 7)");
-      fig.stamp(plot::Stamp{scheme, "M4", par.neighbours_mg, static_cast<long long>(mg_run.particles.size()), mg_run.seconds,
-                            "t = " + format("%g", par.t_end)});
-      const std::tuple<const char*, const std::vector<double>&, const std::vector<double>&> panels[] = {
-          {"\\rho  [code units]", rho, rho_e}, {"v_x  [code units]", vx, v_e}, {"u  [code units]", u, u_e}};
-      for (int k = 0; k < 3; ++k) {
-        auto& [label, values, exact] = panels[k];
-        fig.panel(k).xlabel("x  [code units]").ylabel(label).xlim(-0.6, 0.6)
-            .scatter(x, values, {.label = "SPH", .color = plot::black, .size = 2.0})
-            .line(xs, exact, {.label = "exact", .color = plot::red, .style = plot::Dash::dashed, .width = 1.6});
-        if (k == 0) fig.panel(k).legend(plot::Corner::upper_right);
-      }
-      fig.save_png(chapter.figure_path("monaghan_gingold_tube_3d.png").string());
+      app::shock_tube_figure({app::make_profile(mg_run.particles, "SPH", -0.6, 0.6)}, mg_run.exact, par.t_end,
+                             "Monaghan & Gingold (1983) tube, 3D, standard AV (cf. Watkins et al. 1996, Fig. 7)",
+                             plot::Stamp{scheme, "M4", par.neighbours_mg, static_cast<long long>(mg_run.particles.size()),
+                                         mg_run.seconds, "t = " + format("%g", par.t_end)},
+                             {.x_min = -0.6, .x_max = 0.6, .exact_style = plot::Dash::dashed, .pressure = false})
+          .save_png(chapter.figure_path("monaghan_gingold_tube_3d.png").string());
     }
 
     /// \section ch04_evt Step 7: error against run time

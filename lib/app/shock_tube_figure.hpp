@@ -43,44 +43,53 @@ Profile make_profile(const sph::Particles<D>& p, std::string label, double x_min
   return prof;
 }
 
-/// Draw rho, v, P, u (2 x 2 panels) of the profiles against the exact solution at time t.
-/// `exact_label` names the line (e.g. when it is the solution of another gas, as for the
-/// misprinted equations of chapter 3).
+/// How a shock-tube figure is drawn.
+struct ShockTubeFigureOptions {
+  double x_min = -0.5, x_max = 0.5;   ///< the window drawn
+  std::string exact_label = "exact";  ///< names the line (e.g. the solution of another gas)
+  plot::Dash exact_style = plot::Dash::solid;
+  bool pressure = true;  ///< false: rho, v, u in one column (Watkins et al. 1996, Fig. 7)
+};
+
+/// Draw rho, v, P, u (2 x 2 panels; without P, 3 x 1) of the profiles against the exact
+/// solution at time t.
 inline plot::Figure shock_tube_figure(const std::vector<Profile>& profiles, const sph::RiemannSolution& exact,
                                       double t, const std::string& title, const plot::Stamp& stamp,
-                                      double x_min = -0.5, double x_max = 0.5,
-                                      const std::string& exact_label = "exact") {
+                                      const ShockTubeFigureOptions& options = {}) {
   sph::require(!profiles.empty(), "shock tube figure: no profiles to draw");
   // The exact solution on a fine grid (it has jumps: 4000 points resolve them to 0.03 % of the window).
   const int samples = 4000;
   std::vector<double> xs(samples), rho(samples), v(samples), P(samples), u(samples);
   for (int k = 0; k < samples; ++k) {
-    xs[k] = x_min + (x_max - x_min) * k / (samples - 1);
+    xs[k] = options.x_min + (options.x_max - options.x_min) * k / (samples - 1);
     const sph::GasState w = exact.sample(xs[k], t);
     rho[k] = w.density;
     v[k] = w.velocity;
     P[k] = w.pressure;
     u[k] = exact.internal_energy(xs[k], t);
   }
-  plot::Figure figure(2, 2, {.width = 1500, .height = 1100});
-  figure.title(title);
-  figure.stamp(stamp);
   struct Panel {
     const char* label;
-    const std::vector<double>& exact_values;
+    const std::vector<double>* exact_values;
     std::vector<double> Profile::*values;
   };
-  const Panel panels[] = {{"\\rho  [code units]", rho, &Profile::density},
-                          {"v_x  [code units]", v, &Profile::velocity},
-                          {"P  [code units]", P, &Profile::pressure},
-                          {"u  [code units]", u, &Profile::internal_energy}};
-  for (int k = 0; k < 4; ++k) {
-    plot::Axes& ax = figure.panel(k);
-    ax.xlabel("x  [code units]").ylabel(panels[k].label).xlim(x_min, x_max);
+  std::vector<Panel> panels = {{"\\rho  [code units]", &rho, &Profile::density},
+                               {"v_x  [code units]", &v, &Profile::velocity},
+                               {"P  [code units]", &P, &Profile::pressure},
+                               {"u  [code units]", &u, &Profile::internal_energy}};
+  if (!options.pressure) panels.erase(panels.begin() + 2);
+  plot::Figure figure = options.pressure ? plot::Figure(2, 2, {.width = 1500, .height = 1100})
+                                         : plot::Figure(3, 1, {.width = 1000, .height = 1350});
+  figure.title(title);
+  figure.stamp(stamp);
+  for (std::size_t k = 0; k < panels.size(); ++k) {
+    plot::Axes& ax = figure.panel(static_cast<int>(k));
+    ax.xlabel("x  [code units]").ylabel(panels[k].label).xlim(options.x_min, options.x_max);
     for (const Profile& prof : profiles) {
       ax.scatter(prof.x, prof.*(panels[k].values), {.label = prof.label, .color = prof.color, .size = prof.size});
     }
-    ax.line(xs, panels[k].exact_values, {.label = exact_label, .color = plot::red, .style = plot::Dash::solid, .width = 1.6});
+    ax.line(xs, *panels[k].exact_values,
+            {.label = options.exact_label, .color = plot::red, .style = options.exact_style, .width = 1.6});
     if (k == 0) ax.legend(plot::Corner::upper_right);
   }
   return figure;

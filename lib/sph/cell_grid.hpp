@@ -54,6 +54,17 @@ inline Image mirror_image(Image image) {
   return pack_image<D>(shift);
 }
 
+/// Where a packed image puts a particle relative to itself: the shift of each periodic axis
+/// times the box length there (open axes have no images).
+template <int D>
+Vec<D> image_offset(Image image, const Box<D>& box) {
+  Vec<D> offset = Vec<D>::Zero();
+  for (int a = 0; a < D; ++a) {
+    if (box.periodic[a]) offset[a] = image_shift(image, a) * box.length(a);
+  }
+  return offset;
+}
+
 template <int D>
 class CellGrid {
  public:
@@ -110,15 +121,6 @@ class CellGrid {
       if (a >= D) break;
       ++raw[a];
     }
-  }
-
-  /// The separation vector added to x_j for a packed image.
-  Vec<D> image_offset(Image image) const {
-    Vec<D> offset = Vec<D>::Zero();
-    for (int a = 0; a < D; ++a) {
-      if (box_.periodic[a]) offset[a] = image_shift(image, a) * box_.length(a);
-    }
-    return offset;
   }
 
   int cells(int axis) const { return cells_[axis]; }

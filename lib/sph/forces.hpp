@@ -56,7 +56,7 @@ struct ForceScratch {
 };
 
 /// Build the pair seen from particle i for neighbour n.
-template <int D, class K>
+template <int D>
 inline Pair<D> make_pair(const Particles<D>& p, const NeighbourList<D>& list, std::size_t i, const Neighbour& n) {
   Pair<D> pr;
   pr.i = i;
@@ -80,7 +80,7 @@ void compute_forces(Particles<D>& p, const NeighbourList<D>& list, [[maybe_unuse
     Vec<D> acceleration = Vec<D>::Zero();
     double energy_rate = 0, max_mu = 0;
     for (const Neighbour& nb : list.of(i)) {
-      Pair<D> pr = make_pair<D, K>(p, list, i, nb);
+      Pair<D> pr = make_pair<D>(p, list, i, nb);
       // Pairs in the list reach 2 max(h_i, h_j); the kernel at h_bar may end sooner.
       if (pr.r2 >= support2 * pr.h_bar * pr.h_bar) continue;
       const std::size_t j = pr.j;

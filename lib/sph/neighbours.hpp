@@ -77,13 +77,8 @@ class NeighbourList {
   /// r_ij = x_i - x_j - (image offset): the separation from neighbour n of particle i.
   Vec<D> separation(const std::vector<Vec<D>>& x, std::size_t i, const Neighbour& n) const {
     Vec<D> r = x[i] - x[n.index];
-    if (n.image != 0) r -= offset(n.image);
+    if (n.image != 0) r -= image_offset<D>(n.image, box_);
     return r;
-  }
-  Vec<D> offset(Image image) const {
-    Vec<D> o = Vec<D>::Zero();
-    for (int a = 0; a < D; ++a) o[a] = image_shift(image, a) * period_[a];
-    return o;
   }
   std::size_t particles() const { return offset_.empty() ? 0 : offset_.size() - 1; }
   /// Total number of (i, j) entries: every interacting pair counts twice.
@@ -94,7 +89,7 @@ class NeighbourList {
   friend class NeighbourSearch;
   std::vector<std::size_t> offset_;
   std::vector<Neighbour> entries_;
-  Vec<D> period_ = Vec<D>::Zero();
+  Box<D> box_;  // the box the images refer to
 };
 
 /// Throw sph::Error naming the first particle whose mass is not positive and finite.  A zero or
@@ -332,7 +327,7 @@ class NeighbourSearch {
     const std::span<Candidate> found(block.candidates.data() + first, last - first);
     for (Candidate& c : found) {
       Vec<D> r = unwrapped_[i] - unwrapped_[c.index];
-      if (c.image != 0) r -= image_offset(c.image, built_box_);
+      if (c.image != 0) r -= image_offset<D>(c.image, built_box_);
       c.r2 = r.squaredNorm();
     }
     const double covered = block.reach[i - block.begin] - 2.0 * moved;
@@ -343,14 +338,6 @@ class NeighbourSearch {
     if (!settled || K::support * h > covered) return false;
     p.neighbour_count[i] = count_within(found, K::support * h);
     return true;
-  }
-
-  static Vec<D> image_offset(Image image, const Box<D>& box) {
-    Vec<D> o = Vec<D>::Zero();
-    for (int a = 0; a < D; ++a) {
-      if (box.periodic[a]) o[a] = image_shift(image, a) * box.length(a);
-    }
-    return o;
   }
 
   static bool same_box(const Box<D>& a, const Box<D>& b) {
@@ -580,7 +567,7 @@ class NeighbourSearch {
     }
     for (const auto& b : blocks_)
       for (const auto& r : b.reverse) list_.entries_[fill[r.first]++] = r.second;
-    for (int a = 0; a < D; ++a) list_.period_[a] = box.periodic[a] ? box.length(a) : 0.0;
+    list_.box_ = box;
   }
 
   CellGrid<D> grid_;
