@@ -43,7 +43,9 @@ inline Image pack_image(const std::array<int, D>& shift) {
 
 /// The shift of axis a of a packed image, in box lengths.
 inline int image_shift(Image image, int axis) {
-  return static_cast<std::int8_t>(static_cast<std::uint8_t>((image >> (8 * axis)) & 0xffu));
+  // Move the byte to the top and shift it back down arithmetically, which sign-extends it
+  // (all in 32-bit integers, so SIMD loops over pairs keep 32-bit lanes).
+  return static_cast<std::int32_t>(image << (24 - 8 * axis)) >> 24;
 }
 
 /// The image seen from the other particle of the pair: all shifts negated.

@@ -17,6 +17,7 @@
 #include "sph/parallel.hpp"
 #include "sph/particles.hpp"
 
+#include <span>
 #include <string>
 
 namespace sph {
@@ -32,22 +33,33 @@ struct DensityForm {
   const char* name() const { return sum == Sum::pair_averaged ? "pair-averaged (Selhammar eq 5)" : "gather (Watkins eq A1)"; }
 };
 
-/// rho_i of one particle by the chosen form.
+/// rho_i of one particle by the chosen form.  The loop over neighbours has no branches (the
+/// form is chosen outside it, and a pair past the kernel's support adds an exact zero), so the
+/// compiler runs it on several pairs at once in SIMD registers.
 template <int D, class K>
-double density_of(const Particles<D>& p, const NeighbourList<D>& list, std::size_t i, DensityForm form) {
-  const auto& h = p.smoothing_length;
-  const auto& m = p.mass;
-  double rho = form.self_term ? m[i] * K::value(0.0, h[i]) : 0.0;
-  for (const Neighbour& n : list.of(i)) {
-    const std::size_t j = n.index;
-    const double r = list.separation(p.position, i, n).norm();
-    if (form.sum == DensityForm::Sum::pair_averaged) {
-      rho += 0.5 * (m[i] + m[j]) * K::value(r, 0.5 * (h[i] + h[j]));
-    } else {
-      rho += m[j] * K::value(r, h[i]);
+double density_of(const Particles<D>& p, const NeighbourList<D>& list, const PositionView<D>& positions,
+                  std::size_t i, DensityForm form) {
+  const PositionView<D> x = positions;  // a private copy: its pointers stay in registers
+  const double* h = p.smoothing_length.data();
+  const double* m = p.mass.data();
+  const std::span<const Neighbour> nb = list.of(i);
+  const auto count = static_cast<std::ptrdiff_t>(nb.size());
+  double rho = 0;
+  if (form.sum == DensityForm::Sum::pair_averaged) {
+#pragma omp simd simdlen(8) reduction(+ : rho)
+    for (std::ptrdiff_t k = 0; k < count; ++k) {
+      const Neighbour& n = nb[static_cast<std::size_t>(k)];
+      const std::size_t j = n.index;
+      rho += 0.5 * (m[i] + m[j]) * K::value(x.distance(i, n), 0.5 * (h[i] + h[j]));
+    }
+  } else {
+#pragma omp simd simdlen(8) reduction(+ : rho)
+    for (std::ptrdiff_t k = 0; k < count; ++k) {
+      const Neighbour& n = nb[static_cast<std::size_t>(k)];
+      rho += m[n.index] * K::value(x.distance(i, n), h[i]);
     }
   }
-  return rho;
+  return rho + (form.self_term ? m[i] * K::value(0.0, h[i]) : 0.0);
 }
 
 /// Does nothing: the default for what compute_density does after each particle's sum.
@@ -58,16 +70,17 @@ struct NoFinish {
 /// The density pass: writes p.density for every particle, then calls `finish(i)` for it in the
 /// same loop (the simulation computes pressure and sound speed there, saving a pass over the
 /// particles).  A particle whose sum is not positive and finite (no neighbours and no self
-/// term, or a NaN upstream) is an error that names it.
+/// term, or a NaN upstream) is an error that names it.  `positions` are p.position one array
+/// per axis (PositionArrays); the overload below makes them.
 template <int D, class K = Kernel<D>, class Finish = NoFinish>
-void compute_density(Particles<D>& p, const NeighbourList<D>& list, DensityForm form = DensityForm::selhammar(),
-                     const Finish& finish = {}) {
+void compute_density(Particles<D>& p, const NeighbourList<D>& list, const PositionView<D>& positions,
+                     DensityForm form = DensityForm::selhammar(), const Finish& finish = {}) {
   const std::size_t n = p.size();
   require_positive_masses(p, "density");
   long bad = -1;
 #pragma omp parallel for schedule(static) if (n >= parallel_threshold)
   for (std::size_t i = 0; i < n; ++i) {
-    const double rho = density_of<D, K>(p, list, i, form);
+    const double rho = density_of<D, K>(p, list, positions, i, form);
     p.density[i] = rho;
     if (std::isfinite(rho) && rho > 0) {
       finish(i);
@@ -83,6 +96,15 @@ void compute_density(Particles<D>& p, const NeighbourList<D>& list, DensityForm 
                 std::to_string(list.of(i).size()) + " neighbours, h = " +
                 std::to_string(p.smoothing_length[i]) + ")");
   }
+}
+
+/// The density pass at the particles' current positions.
+template <int D, class K = Kernel<D>, class Finish = NoFinish>
+void compute_density(Particles<D>& p, const NeighbourList<D>& list, DensityForm form = DensityForm::selhammar(),
+                     const Finish& finish = {}) {
+  PositionArrays<D> positions;
+  positions.assign(p.position);
+  compute_density<D, K>(p, list, positions.view(list.box()), form, finish);
 }
 
 }  // namespace sph

@@ -26,6 +26,8 @@
 #include "sph/viscosity/none.hpp"
 
 #include <algorithm>
+#include <array>
+#include <span>
 #include <vector>
 
 namespace sph {
@@ -50,59 +52,108 @@ struct PressureAsPrinted {
 };
 
 /// Per-particle results of the force pass that are not stored in Particles.
+template <int D>
 struct ForceScratch {
   std::vector<double> p_over_rho2;  ///< P_i / rho_i^2, written by the equation-of-state pass
   std::vector<double> max_mu;       ///< max_j |mu_ij|, for the time step (Selhammar eq 7)
+  /// Velocities one array per axis (copied at the start of the pass): the SIMD loop loads a
+  /// neighbour's components from them, one lane each, as it does positions.
+  PositionArrays<D> velocities;
 };
 
-/// Build the pair seen from particle i for neighbour n.
+/// What one pair adds to particle i: \f$ f = m_j (\ldots) g \f$ with the acceleration
+/// \f$ -f\,\mathbf r_{ij} \f$ and heating \f$ \tfrac12 f\, \mathbf r_{ij}\cdot\mathbf v_{ij} \f$, and mu_ij.
+/// (Plain scalars, so the compiler keeps them in registers across the SIMD lanes.)
+struct PairForce {
+  double f, rv, mu;
+  double r_ij[3];  // the first D are used
+};
+
+/// The per-particle inputs of the force pass, as plain arrays.
 template <int D>
-inline Pair<D> make_pair(const Particles<D>& p, const NeighbourList<D>& list, std::size_t i, const Neighbour& n) {
+struct ForceInputs {
+  PositionView<D> x;
+  std::array<const double*, D> v;  // per axis
+  const double *h, *m, *rho, *pressure, *c, *p_over_rho2;
+};
+
+/// The force between particle i and one neighbour: geometry, kernel gradient at h_bar, the
+/// symmetric bracket (pressure, then viscosity).
+template <int D, class K, class PressureForm, class Viscosity>
+inline PairForce pair_force(const ForceInputs<D>& in, [[maybe_unused]] const Viscosity& viscosity, std::size_t i,
+                               const Neighbour& nb) {
+  const std::size_t j = nb.index;
   Pair<D> pr;
   pr.i = i;
-  pr.j = n.index;
-  pr.r_ij = list.separation(p.position, i, n);
-  pr.r2 = pr.r_ij.squaredNorm();
-  pr.h_bar = 0.5 * (p.smoothing_length[i] + p.smoothing_length[n.index]);
-  return pr;
+  pr.j = j;
+  // (Component by component rather than with Eigen's dot(): Eigen's own SIMD code would stop
+  // the compiler from vectorising across pairs.)
+  pr.r2 = pr.rv = 0;
+#pragma GCC unroll 3
+  for (int a = 0; a < D; ++a) {
+    pr.r_ij[a] = in.x.separation(a, i, nb);
+    pr.v_ij[a] = in.v[a][i] - in.v[a][j];
+    pr.r2 += pr.r_ij[a] * pr.r_ij[a];
+    pr.rv += pr.r_ij[a] * pr.v_ij[a];
+  }
+  pr.h_bar = 0.5 * (in.h[i] + in.h[j]);
+  pr.r = std::sqrt(pr.r2);
+  // Pairs in the list reach 2 max(h_i, h_j); the kernel at h_bar may end sooner (the gradient
+  // factor is then zero).
+  pr.gradient_factor = K::gradient_factor(pr.r, pr.h_bar);
+  double bracket = PressureForm::bracket(in.p_over_rho2[i], in.p_over_rho2[j], in.pressure[i], in.pressure[j],
+                                         in.rho[i], in.rho[j]);
+  double mu = 0;
+  if constexpr (Viscosity::active) {
+    const PairViscosity visc = viscosity.pair(pr, 0.5 * (in.rho[i] + in.rho[j]), 0.5 * (in.c[i] + in.c[j]));
+    bracket += visc.pi;
+    // Only pairs inside the kernel limit the time step.
+    mu = pr.r2 < K::support * K::support * pr.h_bar * pr.h_bar ? visc.mu : 0.0;
+  }
+  // Equal and opposite: the factor m_j * bracket * g multiplies the antisymmetric r_ij.
+  PairForce out;
+  out.f = in.m[j] * bracket * pr.gradient_factor;
+  out.rv = pr.rv;
+  out.mu = mu;
+#pragma GCC unroll 3
+  for (int a = 0; a < D; ++a) out.r_ij[a] = pr.r_ij[a];
+  return out;
 }
 
 /// The force pass.  Writes p.acceleration, p.energy_rate (when the gas evolves its energy)
-/// and scratch.max_mu.  Needs density, pressure, sound speed and scratch.p_over_rho2.
+/// and scratch.max_mu.  Needs density, pressure, sound speed and scratch.p_over_rho2, and the
+/// positions one array per axis (PositionArrays).
+///
+/// pair_force has no branches (a pair outside the kernel at h_bar, or receding, contributes
+/// exact zeros), so the compiler runs the loop over one particle's neighbours on several pairs
+/// at once in SIMD registers; the sums are reduced in a fixed order, so the result does not
+/// depend on the number of threads.
 template <int D, class K, class PressureForm, class Viscosity, bool evolve_energy>
-void compute_forces(Particles<D>& p, const NeighbourList<D>& list, [[maybe_unused]] const Viscosity& viscosity,
-                    ForceScratch& scratch) {
+void compute_forces(Particles<D>& p, const NeighbourList<D>& list, const PositionView<D>& positions,
+                    const Viscosity& viscosity, ForceScratch<D>& scratch) {
   const std::size_t n = p.size();
   scratch.max_mu.resize(n);
-  const double support2 = K::support * K::support;
+  scratch.velocities.assign(p.velocity);
+  ForceInputs<D> in{positions, {}, p.smoothing_length.data(), p.mass.data(), p.density.data(),
+                    p.pressure.data(), p.sound_speed.data(), scratch.p_over_rho2.data()};
+  for (int a = 0; a < D; ++a) in.v[a] = scratch.velocities.x[a].data();
 #pragma omp parallel for schedule(static) if (n >= parallel_threshold)
   for (std::size_t i = 0; i < n; ++i) {
-    Vec<D> acceleration = Vec<D>::Zero();
-    double energy_rate = 0, max_mu = 0;
-    for (const Neighbour& nb : list.of(i)) {
-      Pair<D> pr = make_pair<D>(p, list, i, nb);
-      // Pairs in the list reach 2 max(h_i, h_j); the kernel at h_bar may end sooner.
-      if (pr.r2 >= support2 * pr.h_bar * pr.h_bar) continue;
-      const std::size_t j = pr.j;
-      pr.r = std::sqrt(pr.r2);
-      pr.gradient_factor = K::gradient_factor(pr.r, pr.h_bar);
-      pr.v_ij = p.velocity[i] - p.velocity[j];
-      pr.rv = pr.r_ij.dot(pr.v_ij);
-      // The symmetric bracket: pressure, then viscosity.
-      double bracket = PressureForm::bracket(scratch.p_over_rho2[i], scratch.p_over_rho2[j], p.pressure[i],
-                                             p.pressure[j], p.density[i], p.density[j]);
-      if constexpr (Viscosity::active) {
-        const PairViscosity visc = viscosity.pair(pr, 0.5 * (p.density[i] + p.density[j]),
-                                                  0.5 * (p.sound_speed[i] + p.sound_speed[j]));
-        bracket += visc.pi;
-        max_mu = std::max(max_mu, visc.mu);
-      }
-      // Equal and opposite: the factor m_j * bracket * g multiplies the antisymmetric r_ij.
-      const double f = p.mass[j] * bracket * pr.gradient_factor;
-      acceleration -= f * pr.r_ij;
-      if constexpr (evolve_energy) energy_rate += 0.5 * f * pr.rv;
+    const ForceInputs<D> local = in;  // a private copy: its pointers stay in registers
+    const std::span<const Neighbour> nb = list.of(i);
+    const auto count = static_cast<std::ptrdiff_t>(nb.size());
+    double a0 = 0, a1 = 0, a2 = 0, energy_rate = 0, max_mu = 0;
+#pragma omp simd simdlen(8) reduction(+ : a0, a1, a2, energy_rate) reduction(max : max_mu)
+    for (std::ptrdiff_t k = 0; k < count; ++k) {
+      const PairForce pf = pair_force<D, K, PressureForm>(local, viscosity, i, nb[static_cast<std::size_t>(k)]);
+      a0 -= pf.f * pf.r_ij[0];
+      if constexpr (D > 1) a1 -= pf.f * pf.r_ij[1];
+      if constexpr (D > 2) a2 -= pf.f * pf.r_ij[2];
+      if constexpr (evolve_energy) energy_rate += 0.5 * pf.f * pf.rv;
+      max_mu = std::max(max_mu, pf.mu);
     }
-    p.acceleration[i] = acceleration;
+    const double acc[3] = {a0, a1, a2};
+    for (int a = 0; a < D; ++a) p.acceleration[i][a] = acc[a];
     if constexpr (evolve_energy) p.energy_rate[i] = energy_rate;
     scratch.max_mu[i] = max_mu;
   }

@@ -13,6 +13,7 @@
 
 #include "sph/dimension.hpp"
 
+#include <algorithm>
 #include <cmath>
 #include <numbers>
 
@@ -38,15 +39,15 @@ struct CubicSpline {
     if constexpr (D == 3) return 1.0 / std::numbers::pi;
   }
 
+  /// Written without branches (the passes evaluate it for several pairs at once in SIMD
+  /// registers): the two pieces are selected, not branched to.  The outer piece divides by
+  /// max(q, 1), which is q wherever it is selected, and never divides by zero.
   static constexpr KernelShape evaluate(double q) {
-    if (q < 1.0) {
-      return {1.0 - 1.5 * q * q + 0.75 * q * q * q, -3.0 * q + 2.25 * q * q, -3.0 + 2.25 * q};
-    }
-    if (q < 2.0) {
-      const double s = 2.0 - q;
-      return {0.25 * s * s * s, -0.75 * s * s, -0.75 * s * s / q};
-    }
-    return {};
+    const double s = q < 2.0 ? 2.0 - q : 0.0;  // zero past the support
+    const bool inner = q < 1.0;
+    return {inner ? 1.0 - 1.5 * q * q + 0.75 * q * q * q : 0.25 * s * s * s,
+            inner ? -3.0 * q + 2.25 * q * q : -0.75 * s * s,
+            inner ? -3.0 + 2.25 * q : -0.75 * s * s / std::max(q, 1.0)};
   }
 };
 

@@ -17,7 +17,9 @@
 ///    tolerance we place 2h_i half-way between the N-th and (N+1)-th nearest neighbour, so the
 ///    count becomes N exactly -- no iteration is needed.  On a lattice the N-th and (N+1)-th
 ///    neighbour can lie on one shell; then 2h goes into the gap inside or outside that shell,
-///    whichever count is nearer N (the count is then the nearest achievable, not N);
+///    whichever count is nearer N (the count is then the nearest achievable, not N), and that
+///    count is accepted like one within the tolerance until it changes -- otherwise a particle
+///    of an unmoving lattice would select its h again every step, and always find the same;
 ///  - **density**: \f$ h_i = \left(\frac{N m_i}{V_D 2^D \rho_i}\right)^{1/D} \f$ with the
 ///    gather density \f$ \rho_i(h_i) \f$, solved per particle by Newton iteration (Watkins
 ///    eqs A6-A7; \f$ V_D \f$ is the volume of the unit ball, so N is the expected neighbour
@@ -36,6 +38,7 @@
 #include <omp.h>
 
 #include <algorithm>
+#include <array>
 #include <limits>
 #include <cstdint>
 #include <span>
@@ -66,6 +69,53 @@ struct SmoothingLengthRule {
   static SmoothingLengthRule from_density(double n) { return {Mode::density, n}; }
 };
 
+/// Positions one array per axis, with the box lengths the periodic images of a neighbour list
+/// refer to: what a pass's SIMD loop over pairs reads (one lane per pair).  A plain view
+/// (pointers and numbers), to be copied into a local before such a loop, so the compiler keeps
+/// it in registers.  PositionArrays owns the arrays.
+template <int D>
+struct PositionView {
+  std::array<const double*, D> x;  ///< x[a][i]: coordinate a of particle i
+  std::array<double, D> period;    ///< box length on periodic axes, 0 on open ones
+
+  /// Component a of r_ij = x_i - x_j - (image offset), without a branch.
+  double separation(int a, std::size_t i, const Neighbour& n) const {
+    return x[a][i] - x[a][n.index] - image_shift(n.image, a) * period[a];
+  }
+  /// |r_ij|.
+  double distance(std::size_t i, const Neighbour& n) const {
+    double r2 = 0;
+#pragma GCC unroll 3
+    for (int a = 0; a < D; ++a) {
+      const double d = separation(a, i, n);
+      r2 += d * d;
+    }
+    return std::sqrt(r2);
+  }
+};
+
+/// A copy of the positions, one array per axis, for PositionView.
+template <int D>
+struct PositionArrays {
+  std::array<std::vector<double>, D> x;
+
+  void assign(const std::vector<Vec<D>>& positions) {
+    const std::size_t n = positions.size();
+    for (int a = 0; a < D; ++a) x[a].resize(n);
+#pragma omp parallel for schedule(static) if (n >= parallel_threshold)
+    for (std::size_t i = 0; i < n; ++i)
+      for (int a = 0; a < D; ++a) x[a][i] = positions[i][a];
+  }
+  PositionView<D> view(const Box<D>& box) const {
+    PositionView<D> v;
+    for (int a = 0; a < D; ++a) {
+      v.x[a] = x[a].data();
+      v.period[a] = box.periodic[a] ? box.length(a) : 0.0;
+    }
+    return v;
+  }
+};
+
 /// The symmetric neighbour list in compressed-row form.
 template <int D>
 class NeighbourList {
@@ -83,6 +133,8 @@ class NeighbourList {
   std::size_t particles() const { return offset_.empty() ? 0 : offset_.size() - 1; }
   /// Total number of (i, j) entries: every interacting pair counts twice.
   std::size_t entries() const { return entries_.size(); }
+  /// The box the periodic images refer to.
+  const Box<D>& box() const { return box_; }
 
  private:
   template <int, class>
@@ -118,6 +170,11 @@ class NeighbourSearch {
     require(n < (std::size_t{1} << 31), "neighbour search: too many particles");
     validate_rule(rule);
     if (rule.mode == SmoothingLengthRule::Mode::density) require_positive_masses(p, "smoothing length from density");
+    // A shell count is remembered only for the set and the rule that forced it.
+    if (shell_count_.size() != n || rule.neighbours != shell_rule_.neighbours || rule.tolerance != shell_rule_.tolerance) {
+      shell_count_.assign(n, -1);
+      shell_rule_ = rule;
+    }
     if (try_reuse(p, box, rule)) {
       ++reuses_;
       return;
@@ -128,7 +185,10 @@ class NeighbourSearch {
 
   /// Make the next update a full search (the reuse test covers motion, not particles moved or
   /// replaced by hand; it is safe to call this after such a change).
-  void forget_candidates() { reusable_ = false; }
+  void forget_candidates() {
+    reusable_ = false;
+    shell_count_.clear();
+  }
 
   /// How many updates searched the grid, and how many reused the candidates of the last search.
   long searches() const { return searches_; }
@@ -333,7 +393,7 @@ class NeighbourSearch {
     const double covered = block.reach[i - block.begin] - 2.0 * moved;
     double& h = p.smoothing_length[i];
     bool settled = true;
-    if (rule.mode == SmoothingLengthRule::Mode::neighbour_number) settled = settle_by_count(rule, covered, found, h);
+    if (rule.mode == SmoothingLengthRule::Mode::neighbour_number) settled = settle_by_count(rule, covered, found, h, shell_count_[i]);
     if (rule.mode == SmoothingLengthRule::Mode::density) settled = settle_by_density(p, rule, i, covered, found, h);
     if (!settled || K::support * h > covered) return false;
     p.neighbour_count[i] = count_within(found, K::support * h);
@@ -377,7 +437,7 @@ class NeighbourSearch {
   // Choose h_i by the rule, growing the search radius until the candidates suffice; returns
   // the radius searched.
   double settle_particle(Particles<D>& p, const SmoothingLengthRule& rule, std::size_t i,
-                         std::vector<Candidate>& found) const {
+                         std::vector<Candidate>& found) {
     double& h = p.smoothing_length[i];
     double radius = K::support * h * (1.0 + search_margin);
     const double grid_extent = std::max(grid_.extent(), K::support * h);
@@ -386,7 +446,7 @@ class NeighbourSearch {
       const bool settled = [&] {
         switch (rule.mode) {
           case SmoothingLengthRule::Mode::fixed: return true;
-          case SmoothingLengthRule::Mode::neighbour_number: return settle_by_count(rule, radius, found, h);
+          case SmoothingLengthRule::Mode::neighbour_number: return settle_by_count(rule, radius, found, h, shell_count_[i]);
           case SmoothingLengthRule::Mode::density: return settle_by_density(p, rule, i, radius, found, h);
         }
         return true;
@@ -415,12 +475,14 @@ class NeighbourSearch {
     return count;
   }
 
-  // Neighbour-number rule: keep h while the count is within tolerance, else put 2h half-way
-  // between the N-th and (N+1)-th nearest candidate.  False when the candidates do not reach
-  // that far (the caller widens the search).
-  static bool settle_by_count(const SmoothingLengthRule& rule, double radius, std::span<Candidate> found, double& h) {
+  // Neighbour-number rule: keep h while the count is within tolerance (or is the count a shell
+  // forced last time, `shell`), else put 2h half-way between the N-th and (N+1)-th nearest
+  // candidate.  False when the candidates do not reach that far (the caller widens the search).
+  static bool settle_by_count(const SmoothingLengthRule& rule, double radius, std::span<Candidate> found, double& h,
+                              int& shell) {
     const int count = count_within(found, K::support * h);
-    if (std::abs(count - rule.neighbours) <= rule.tolerance && K::support * h <= radius) return true;
+    const bool accepted = std::abs(count - rule.neighbours) <= rule.tolerance || count == shell;
+    if (accepted && K::support * h <= radius) return true;
     const auto n = static_cast<std::size_t>(std::llround(rule.neighbours));
     if (found.size() < n + 1) return false;
     auto by_distance = [](const Candidate& a, const Candidate& b) { return a.r2 < b.r2; };
@@ -433,17 +495,19 @@ class NeighbourSearch {
     const double tie = 1e-10 * rn1;
     if (rn1 - rn > tie) {
       h = 0.5 * (rn + rn1) / K::support;
+      shell = -1;
       return true;
     }
-    return settle_on_shell(rule.neighbours, rn, tie, radius, found, h);
+    return settle_on_shell(rule.neighbours, rn, tie, radius, found, h, shell);
   }
 
   // The N-th and (N+1)-th neighbours lie on one shell (equal distances, as on a lattice, or
   // coincident particles at r = 0).  No radius gives exactly N; put 2h in the gap just inside or
   // just outside the shell, whichever count is nearer N (outside on a tie, and always outside a
-  // shell at r = 0, so h > 0).  False when the candidates end at the shell (widen the search).
+  // shell at r = 0, so h > 0), and record that count in `count`.  False when the candidates end
+  // at the shell (widen the search).
   static bool settle_on_shell(double target, double shell, double tie, double radius, std::span<Candidate> found,
-                              double& h) {
+                              double& h, int& count) {
     // Counts below and up to the shell, and the nearest distances on either side, in one pass
     // (no sort: on a lattice every particle lands here every step).
     const double below = shell - tie;  // negative for a shell at r = 0: nothing is inside it
@@ -466,6 +530,7 @@ class NeighbourSearch {
                                                std::abs(static_cast<double>(through) - target);
     const double r_gap = std::sqrt(take_inside ? r_in2 : r_out2);
     h = 0.5 * (shell + r_gap) / K::support;
+    count = static_cast<int>(take_inside ? inside : through);
     return true;
   }
 
@@ -582,6 +647,10 @@ class NeighbourSearch {
   std::vector<Vec<D>> unwrapped_;           // built position + displacement since, followed update by update
   std::vector<std::array<int, D>> wrapped_;  // periods between unwrapped and stored position
   long searches_ = 0, reuses_ = 0;
+  // Neighbour-number rule: the count a lattice shell forced on each particle (-1: none), and
+  // the rule it was forced under.
+  std::vector<int> shell_count_;
+  SmoothingLengthRule shell_rule_;
 };
 
 }  // namespace sph

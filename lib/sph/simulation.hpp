@@ -102,9 +102,12 @@ class Simulation {
   void compute_accelerations() {
     search_.update(particles_, box_, settings_.smoothing);
     scratch_.p_over_rho2.resize(particles_.size());
-    compute_density<D, K>(particles_, search_.list(), settings_.density, [this](std::size_t i) { equation_of_state(i); });
-    compute_forces<D, K, typename P::PressureForm, Viscosity, evolve_energy>(particles_, search_.list(), viscosity_,
-                                                                            scratch_);
+    positions_.assign(particles_.position);
+    const PositionView<D> x = positions_.view(box_);
+    compute_density<D, K>(particles_, search_.list(), x, settings_.density,
+                          [this](std::size_t i) { equation_of_state(i); });
+    compute_forces<D, K, typename P::PressureForm, Viscosity, evolve_energy>(particles_, search_.list(), x,
+                                                                            viscosity_, scratch_);
     check_finite_forces();
   }
 
@@ -264,7 +267,8 @@ class Simulation {
   Viscosity viscosity_;
   Settings settings_;
   NeighbourSearch<D, K> search_;
-  ForceScratch scratch_;
+  ForceScratch<D> scratch_;
+  PositionArrays<D> positions_;  // the positions one array per axis, for the passes
   std::vector<Vec<D>> velocity_half_;  // v at the half step while the forces see the prediction
   std::vector<double> energy_half_;    // u likewise
   double time_ = 0;

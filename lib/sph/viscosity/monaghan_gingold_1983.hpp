@@ -45,10 +45,10 @@ struct MonaghanGingold1983 {
   }
 
   /// Pi_ij for one pair: \f$ \bar\rho_{ij} \f$ and \f$ \bar c_{ij} \f$ are the pair means.
+  /// (Without a branch: a receding pair has mu = 0 and so Pi = 0 exactly.)
   template <int D>
   PairViscosity pair(const Pair<D>& p, double rho_bar, double c_bar) const {
-    if (p.rv >= 0) return {};
-    const double mu = p.h_bar * p.rv / (p.r2 + nu2_factor * p.h_bar * p.h_bar);
+    const double mu = p.rv < 0 ? p.h_bar * p.rv / (p.r2 + nu2_factor * p.h_bar * p.h_bar) : 0.0;
     return {(-alpha * mu * c_bar + beta * mu * mu) / rho_bar, -mu};
   }
 
