@@ -12,16 +12,19 @@
 #include <omp.h>
 
 #include <cstdio>
+#include <string>
 
 int main(int argc, char** argv) {
   CLI::App app{"SPH course benchmarks: neighbour search and hydrodynamic steps in 1D/2D/3D"};
   bool quick = false;
+  std::string only;
   app.add_flag("--quick", quick, "small sizes, a few seconds (for smoke tests)");
+  app.add_option("--only", only, "run one part: neighbours or hydro")->check(CLI::IsMember({"neighbours", "hydro"}));
   CLI11_PARSE(app, argc, argv);
   std::printf("SPH course benchmark: %d hardware threads\n", omp_get_num_procs());
 #ifdef SPH_BENCH_NEIGHBOURS
-  bench::bench_neighbours(quick);
+  if (only != "hydro") bench::bench_neighbours(quick);
 #endif
-  bench::bench_hydro(quick);
+  if (only != "neighbours") bench::bench_hydro(quick);
   return 0;
 }

@@ -88,6 +88,30 @@ class CellGrid {
   /// particle, is reported too (with r2 = 0, image 0): callers skip it when they need to.
   template <class F>
   void for_each_within(const Vec<D>& point, double radius, F&& f) const {
+    const double radius2 = radius * radius;
+    std::uint32_t hit[scan_block];
+    for_each_block_within(point, radius, [&](const std::uint32_t* index, const double* r2, std::size_t count, Image image) {
+      // Compact the hits without a branch: about one candidate in three is one, too irregular
+      // for the branch predictor.
+      std::uint32_t hits = 0;
+      for (std::uint32_t k = 0; k < count; ++k) {
+        hit[hits] = k;
+        hits += r2[k] < radius2;
+      }
+      const Vec<D> shifted = point - image_offset<D>(image, box_);
+      for (std::uint32_t n = 0; n < hits; ++n) {
+        const std::uint32_t k = hit[n];
+        f(index[k], image, Vec<D>(shifted - position_of(index + k)), r2[k]);
+      }
+    });
+  }
+
+  /// The same query in blocks: call f(index, r2, count, image) for consecutive runs of up to
+  /// scan_block sorted particles of the visited cells, with their squared distances from the
+  /// point (particle index[k] at r2[k], image `image`); the caller keeps those with r2 < radius^2.
+  /// Every particle within the radius is in some block; most block members are not.
+  template <class F>
+  void for_each_block_within(const Vec<D>& point, double radius, F&& f) const {
     std::array<int, D> first{}, last{};
     for (int a = 0; a < D; ++a) {
       first[a] = cell_coordinate(point[a] - radius, a);
@@ -107,13 +131,26 @@ class CellGrid {
       int row = 0, stride = cells_[0];
       std::array<int, D> shift{};
       Vec<D> offset = Vec<D>::Zero();
+      double row_distance2 = 0;  // from the point to the row, across the higher axes
       for (int a = 1; a < D; ++a) {
         const int c = wrap_axis(raw[a], a, shift[a]);
         offset[a] = shift[a] * box_.length(a);
         row += c * stride;
         stride *= cells_[a];
+        // (Widened by a hair: the cell of a particle comes from a rounded product.)
+        const double slack = 1e-9 * cell_size_[a];
+        const double low = origin_[a] + raw[a] * cell_size_[a] - slack, high = low + cell_size_[a] + 2 * slack;
+        const double gap = std::max({0.0, low - point[a], point[a] - high});
+        row_distance2 += gap * gap;
       }
-      for_each_in_x_run(point, radius2, first[0], last[0], row, shift, offset, f);
+      // Only the x cells that the sphere's chord through this row touches (a row outside the
+      // sphere has none): the sphere fills about half the cube of cells around it.
+      if (row_distance2 < radius2) {
+        const double chord = std::sqrt(radius2 - row_distance2);
+        int x_first = std::max(first[0], cell_coordinate(point[0] - chord, 0));
+        int x_last = std::min(last[0], cell_coordinate(point[0] + chord, 0));
+        if (x_first <= x_last) for_each_in_x_run(point, radius2, x_first, x_last, row, shift, offset, f);
+      }
       // Advance the odometer over the higher axes.
       int a = 1;
       while (a < D && raw[a] == last[a]) {
@@ -171,36 +208,29 @@ class CellGrid {
     }
   }
 
-  // The particles sorted_[first..last) within the radius of the point.  The distances are
-  // computed in blocks from per-axis coordinate arrays in a branch-free loop the compiler
-  // vectorises; only the hits go to the caller.
+  // The particles sorted_[first..last), in blocks with their squared distances from the point.
+  // The distances are computed from per-axis coordinate arrays in a branch-free loop the
+  // compiler vectorises.
   template <class F>
-  void scan_range(std::uint32_t first, std::uint32_t last, const Vec<D>& point, double radius2, Image image,
-                  F& f) const {
-    constexpr std::uint32_t block = 32;
+  void scan_range(std::uint32_t first, std::uint32_t last, const Vec<D>& point, double, Image image, F& f) const {
+    constexpr std::uint32_t block = scan_block;
     double r2[block];
-    std::uint32_t hit[block];
     for (std::uint32_t start = first; start < last; start += block) {
       const std::uint32_t count = std::min(block, last - start);
-      for (std::uint32_t k = 0; k < count; ++k) {
+      // Pointers to the block first, so the compiler sees contiguous loads (32-bit index
+      // arithmetic that might wrap would make it gather element by element).
+      std::array<const double*, D> xs;
+      for (int a = 0; a < D; ++a) xs[a] = sorted_coordinate_[a].data() + start;
+      for (std::size_t k = 0; k < count; ++k) {
         double sum = 0;
+#pragma GCC unroll 3
         for (int a = 0; a < D; ++a) {
-          const double d = point[a] - sorted_coordinate_[a][start + k];
+          const double d = point[a] - xs[a][k];
           sum += d * d;
         }
         r2[k] = sum;
       }
-      // Compact the hits without a branch: about one candidate in four is one, too irregular
-      // for the branch predictor.
-      std::uint32_t hits = 0;
-      for (std::uint32_t k = 0; k < count; ++k) {
-        hit[hits] = k;
-        hits += r2[k] < radius2;
-      }
-      for (std::uint32_t n = 0; n < hits; ++n) {
-        const std::uint32_t k = hit[n];
-        f(sorted_index_[start + k], image, Vec<D>(point - sorted_position_[start + k]), r2[k]);
-      }
+      f(sorted_index_.data() + start, static_cast<const double*>(r2), static_cast<std::size_t>(count), image);
     }
   }
 
@@ -231,14 +261,17 @@ class CellGrid {
         }
         total *= cells_[a];
       }
-      if (total <= max_cells) return;
+      if (total <= max_cells) {
+        inverse_cell_size_ = cell_size_.cwiseInverse();
+        return;
+      }
       target *= 1.25;
     }
     throw Error("cell grid: could not choose a cell size (particles spread over too large a range)");
   }
 
   int cell_coordinate(double xa, int a) const {
-    const double c = std::floor((xa - origin_[a]) / cell_size_[a]);
+    const double c = std::floor((xa - origin_[a]) * inverse_cell_size_[a]);
     // Clamp far-away coordinates so huge radii cannot overflow an int.
     const double limit = 1e8;
     return static_cast<int>(std::clamp(c, -limit, limit));
@@ -273,9 +306,14 @@ class CellGrid {
     }
   }
 
+  static constexpr std::uint32_t scan_block = 32;  // particles per block of a scan
+  // The position of the sorted particle whose index entry is at `entry`.
+  const Vec<D>& position_of(const std::uint32_t* entry) const { return sorted_position_[entry - sorted_index_.data()]; }
+
   Box<D> box_;
   Vec<D> origin_ = Vec<D>::Zero();
   Vec<D> cell_size_ = Vec<D>::Ones();
+  Vec<D> inverse_cell_size_ = Vec<D>::Ones();  // multiplied rather than divided by, in every query
   std::array<int, D> cells_{};
   std::vector<std::uint32_t> cell_start_;
   std::vector<Vec<D>> sorted_position_;

@@ -46,14 +46,14 @@ double density_of(const Particles<D>& p, const NeighbourList<D>& list, const Pos
   const auto count = static_cast<std::ptrdiff_t>(nb.size());
   double rho = 0;
   if (form.sum == DensityForm::Sum::pair_averaged) {
-#pragma omp simd simdlen(8) reduction(+ : rho)
+#pragma omp simd simdlen(8) if(simd : D > 1) reduction(+ : rho)
     for (std::ptrdiff_t k = 0; k < count; ++k) {
       const Neighbour& n = nb[static_cast<std::size_t>(k)];
       const std::size_t j = n.index;
       rho += 0.5 * (m[i] + m[j]) * K::value(x.distance(i, n), 0.5 * (h[i] + h[j]));
     }
   } else {
-#pragma omp simd simdlen(8) reduction(+ : rho)
+#pragma omp simd simdlen(8) if(simd : D > 1) reduction(+ : rho)
     for (std::ptrdiff_t k = 0; k < count; ++k) {
       const Neighbour& n = nb[static_cast<std::size_t>(k)];
       rho += m[n.index] * K::value(x.distance(i, n), h[i]);
@@ -78,7 +78,7 @@ void compute_density(Particles<D>& p, const NeighbourList<D>& list, const Positi
   const std::size_t n = p.size();
   require_positive_masses(p, "density");
   long bad = -1;
-#pragma omp parallel for schedule(static) if (n >= parallel_threshold)
+#pragma omp parallel for schedule(dynamic, 512) if (n >= parallel_threshold)
   for (std::size_t i = 0; i < n; ++i) {
     const double rho = density_of<D, K>(p, list, positions, i, form);
     p.density[i] = rho;

@@ -136,14 +136,14 @@ void compute_forces(Particles<D>& p, const NeighbourList<D>& list, const Positio
   scratch.velocities.assign(p.velocity);
   ForceInputs<D> in{positions, {}, p.smoothing_length.data(), p.mass.data(), p.density.data(),
                     p.pressure.data(), p.sound_speed.data(), scratch.p_over_rho2.data()};
-  for (int a = 0; a < D; ++a) in.v[a] = scratch.velocities.x[a].data();
-#pragma omp parallel for schedule(static) if (n >= parallel_threshold)
+  for (int a = 0; a < D; ++a) in.v[a] = scratch.velocities.axis(a);
+#pragma omp parallel for schedule(dynamic, 512) if (n >= parallel_threshold)
   for (std::size_t i = 0; i < n; ++i) {
     const ForceInputs<D> local = in;  // a private copy: its pointers stay in registers
     const std::span<const Neighbour> nb = list.of(i);
     const auto count = static_cast<std::ptrdiff_t>(nb.size());
     double a0 = 0, a1 = 0, a2 = 0, energy_rate = 0, max_mu = 0;
-#pragma omp simd simdlen(8) reduction(+ : a0, a1, a2, energy_rate) reduction(max : max_mu)
+#pragma omp simd simdlen(8) if(simd : D > 1) reduction(+ : a0, a1, a2, energy_rate) reduction(max : max_mu)
     for (std::ptrdiff_t k = 0; k < count; ++k) {
       const PairForce pf = pair_force<D, K, PressureForm>(local, viscosity, i, nb[static_cast<std::size_t>(k)]);
       a0 -= pf.f * pf.r_ij[0];

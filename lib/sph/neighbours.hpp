@@ -94,26 +94,40 @@ struct PositionView {
   }
 };
 
-/// A copy of the positions, one array per axis, for PositionView.
+/// The positions (or velocities) one array per axis, for PositionView.  In 1D a vector of
+/// Vec<1> already is that array: nothing is copied, the view points at the original (which
+/// must then outlive it).
 template <int D>
-struct PositionArrays {
-  std::array<std::vector<double>, D> x;
-
-  void assign(const std::vector<Vec<D>>& positions) {
-    const std::size_t n = positions.size();
-    for (int a = 0; a < D; ++a) x[a].resize(n);
+class PositionArrays {
+ public:
+  void assign(const std::vector<Vec<D>>& values) {
+    const std::size_t n = values.size();
+    if constexpr (D == 1) {
+      data_[0] = values.data()->data();
+    } else {
+      for (int a = 0; a < D; ++a) {
+        copy_[a].resize(n);
+        data_[a] = copy_[a].data();
+      }
 #pragma omp parallel for schedule(static) if (n >= parallel_threshold)
-    for (std::size_t i = 0; i < n; ++i)
-      for (int a = 0; a < D; ++a) x[a][i] = positions[i][a];
+      for (std::size_t i = 0; i < n; ++i)
+        for (int a = 0; a < D; ++a) copy_[a][i] = values[i][a];
+    }
   }
+  /// Component a of every particle.
+  const double* axis(int a) const { return data_[a]; }
   PositionView<D> view(const Box<D>& box) const {
     PositionView<D> v;
     for (int a = 0; a < D; ++a) {
-      v.x[a] = x[a].data();
+      v.x[a] = data_[a];
       v.period[a] = box.periodic[a] ? box.length(a) : 0.0;
     }
     return v;
   }
+
+ private:
+  std::array<std::vector<double>, D> copy_;
+  std::array<const double*, D> data_{};
 };
 
 /// The symmetric neighbour list in compressed-row form.
@@ -228,8 +242,11 @@ class NeighbourSearch {
     require_neighbours(p);
     built_position_ = p.position;
     previous_position_ = p.position;
-    unwrapped_ = p.position;
-    wrapped_.assign(n, std::array<int, D>{});
+    for (int a = 0; a < D; ++a) {
+      unwrapped_[a].resize(n);
+      for (std::size_t i = 0; i < n; ++i) unwrapped_[a][i] = p.position[i][a];
+    }
+    wrapped_.assign(n, 0);
     built_box_ = box;
     built_mode_ = rule.mode;
     reusable_ = true;
@@ -245,17 +262,47 @@ class NeighbourSearch {
   double search_margin = 0.2;
 
  private:
-  struct Candidate {
-    std::uint32_t index;
-    Image image;
-    double r2;
+  // Candidates one array per field, so the refresh of their distances runs in SIMD registers.
+  // The arrays only grow; `count` entries are in use.
+  struct Candidates {
+    std::vector<std::uint32_t> index;
+    std::vector<Image> image;
+    std::vector<double> r2;
+    std::size_t count = 0;
+    std::size_t size() const { return count; }
+    void clear() { count = 0; }
+    // Room for `more` entries past the used ones.
+    void reserve_more(std::size_t more) {
+      if (count + more <= index.size()) return;
+      const std::size_t n = std::max(count + more, 2 * index.size());
+      index.resize(n);
+      image.resize(n);
+      r2.resize(n);
+    }
+    void append(const Candidates& other) {
+      reserve_more(other.count);
+      std::copy_n(other.index.begin(), other.count, index.begin() + static_cast<std::ptrdiff_t>(count));
+      std::copy_n(other.image.begin(), other.count, image.begin() + static_cast<std::ptrdiff_t>(count));
+      std::copy_n(other.r2.begin(), other.count, r2.begin() + static_cast<std::ptrdiff_t>(count));
+      count += other.count;
+    }
   };
+  // The candidates of one particle.
+  struct CandidateSpan {
+    const std::uint32_t* index;
+    const Image* image;
+    double* r2;
+    std::size_t size;
+  };
+  static CandidateSpan span_of(Candidates& c, std::size_t first, std::size_t last) {
+    return {c.index.data() + first, c.image.data() + first, c.r2.data() + first, last - first};
+  }
   // The work of one thread: a contiguous range of particles, its candidates and the pairs it
   // keeps.  One-sided pairs (r_ij < 2h_i but >= 2h_j) are recorded so j gets them too.
   struct Block {
     std::size_t begin = 0, end = 0;
     std::vector<std::size_t> candidate_start;
-    std::vector<Candidate> candidates;
+    Candidates candidates;
     std::vector<double> reach;  // the radius within which each particle's candidates are complete
     std::vector<std::size_t> kept_start;
     std::vector<Neighbour> kept;
@@ -341,16 +388,27 @@ class NeighbourSearch {
       for (int a = 0; a < D; ++a) {
         if (box.periodic[a] && std::abs(step[a]) > 0.25 * box.length(a)) return false;
       }
-      unwrapped_[i] += step;
       previous_position_[i] = p.position[i];
-      mean += unwrapped_[i] - built_position_[i];
+      std::array<int, D> periods{};
       for (int a = 0; a < D; ++a) {
-        wrapped_[i][a] = box.periodic[a] ? static_cast<int>(std::lround((unwrapped_[i][a] - p.position[i][a]) / box.length(a))) : 0;
+        double& u = unwrapped_[a][i];
+        u += step[a];
+        mean[a] += u - built_position_[i][a];
+        if (box.periodic[a]) periods[a] = static_cast<int>(std::lround((u - p.position[i][a]) / box.length(a)));
+        if (std::abs(periods[a]) > 100) return false;  // (an image shift must fit in a byte)
       }
+      wrapped_[i] = pack_image<D>(periods);
     }
     mean /= static_cast<double>(n);
     double moved2 = 0;
-    for (std::size_t i = 0; i < n; ++i) moved2 = std::max(moved2, (unwrapped_[i] - built_position_[i] - mean).squaredNorm());
+    for (std::size_t i = 0; i < n; ++i) {
+      double d2 = 0;
+      for (int a = 0; a < D; ++a) {
+        const double d = unwrapped_[a][i] - built_position_[i][a] - mean[a];
+        d2 += d * d;
+      }
+      moved2 = std::max(moved2, d2);
+    }
     const double moved = std::sqrt(moved2);
     int failed = 0;
 #pragma omp parallel num_threads(static_cast<int>(blocks_.size()))
@@ -384,11 +442,24 @@ class NeighbourSearch {
   bool settle_from_candidates(Particles<D>& p, const SmoothingLengthRule& rule, Block& block, std::size_t i,
                               double moved) {
     const std::size_t first = block.candidate_start[i - block.begin], last = block.candidate_start[i - block.begin + 1];
-    const std::span<Candidate> found(block.candidates.data() + first, last - first);
-    for (Candidate& c : found) {
-      Vec<D> r = unwrapped_[i] - unwrapped_[c.index];
-      if (c.image != 0) r -= image_offset<D>(c.image, built_box_);
-      c.r2 = r.squaredNorm();
+    const CandidateSpan found = span_of(block.candidates, first, last);
+    // The new distances, in the frame of the unwrapped positions (where the images recorded at
+    // the search still hold).
+    PositionView<D> u;
+    for (int a = 0; a < D; ++a) {
+      u.x[a] = unwrapped_[a].data();
+      u.period[a] = built_box_.periodic[a] ? built_box_.length(a) : 0.0;
+    }
+#pragma omp simd simdlen(8) if(simd : D > 1)
+    for (std::size_t k = 0; k < found.size; ++k) {
+      const Neighbour c{found.index[k], found.image[k]};
+      double r2 = 0;
+#pragma GCC unroll 3
+      for (int a = 0; a < D; ++a) {
+        const double d = u.separation(a, i, c);
+        r2 += d * d;
+      }
+      found.r2[k] = r2;
     }
     const double covered = block.reach[i - block.begin] - 2.0 * moved;
     double& h = p.smoothing_length[i];
@@ -406,8 +477,9 @@ class NeighbourSearch {
 
   // The image of candidate j of i in the frame of the stored (wrapped) positions.
   Image current_image(Image built, std::size_t i, std::size_t j) const {
+    if ((wrapped_[i] | wrapped_[j]) == 0) return built;  // neither has crossed a periodic face
     std::array<int, D> shift{};
-    for (int a = 0; a < D; ++a) shift[a] = image_shift(built, a) - wrapped_[i][a] + wrapped_[j][a];
+    for (int a = 0; a < D; ++a) shift[a] = image_shift(built, a) - image_shift(wrapped_[i], a) + image_shift(wrapped_[j], a);
     return pack_image<D>(shift);
   }
 
@@ -416,33 +488,46 @@ class NeighbourSearch {
     block.candidate_start.clear();
     block.candidates.clear();
     block.reach.clear();
-    std::vector<Candidate> found;
+    Candidates found;
     for (std::size_t i = block.begin; i < block.end; ++i) {
       block.reach.push_back(settle_particle(p, rule, i, found));
       block.candidate_start.push_back(block.candidates.size());
-      block.candidates.insert(block.candidates.end(), found.begin(), found.end());
+      block.candidates.append(found);
     }
     block.candidate_start.push_back(block.candidates.size());
   }
 
   // Gather the candidates of particle i within radius (the particle itself excluded).
-  void gather(const Particles<D>& p, std::size_t i, double radius, std::vector<Candidate>& found) const {
+  // The grid hands over blocks of scanned particles with their distances; the ones within the
+  // radius are kept by writing every one and advancing the end only past the hits (about one
+  // in three: a branch would be mispredicted too often).
+  void gather(const Particles<D>& p, std::size_t i, double radius, Candidates& found) const {
     found.clear();
-    grid_.for_each_within(p.position[i], radius, [&](std::uint32_t j, Image image, const Vec<D>&, double r2) {
-      if (j == i && image == 0) return;
-      found.push_back({j, image, r2});
-    });
+    const double radius2 = radius * radius;
+    const auto self = static_cast<std::uint32_t>(i);
+    grid_.for_each_block_within(p.position[i], radius,
+                                [&](const std::uint32_t* index, const double* r2, std::size_t count, Image image) {
+                                  found.reserve_more(count);
+                                  std::size_t end = found.count;
+                                  for (std::size_t k = 0; k < count; ++k) {
+                                    found.index[end] = index[k];
+                                    found.image[end] = image;
+                                    found.r2[end] = r2[k];
+                                    end += (r2[k] < radius2) & !(index[k] == self && image == 0);
+                                  }
+                                  found.count = end;
+                                });
   }
 
   // Choose h_i by the rule, growing the search radius until the candidates suffice; returns
   // the radius searched.
-  double settle_particle(Particles<D>& p, const SmoothingLengthRule& rule, std::size_t i,
-                         std::vector<Candidate>& found) {
+  double settle_particle(Particles<D>& p, const SmoothingLengthRule& rule, std::size_t i, Candidates& all) {
     double& h = p.smoothing_length[i];
     double radius = K::support * h * (1.0 + search_margin);
     const double grid_extent = std::max(grid_.extent(), K::support * h);
     for (int attempt = 0; attempt < 64; ++attempt) {
-      gather(p, i, radius, found);
+      gather(p, i, radius, all);
+      const CandidateSpan found = span_of(all, 0, all.size());
       const bool settled = [&] {
         switch (rule.mode) {
           case SmoothingLengthRule::Mode::fixed: return true;
@@ -458,7 +543,7 @@ class NeighbourSearch {
       // Past a few times the grid's extent a wider search finds nothing new on open axes, and
       // only more periodic images on periodic ones: the target cannot be met sensibly.
       if (radius > 4.0 * grid_extent) {
-        throw Error("particle " + std::to_string(i) + ": only " + std::to_string(found.size()) +
+        throw Error("particle " + std::to_string(i) + ": only " + std::to_string(found.size) +
                     " other particles (periodic images included) within " + std::to_string(radius) +
                     ", cannot reach " + std::to_string(rule.neighbours) + " neighbours");
       }
@@ -468,27 +553,31 @@ class NeighbourSearch {
                 ": no smoothing length found (search radius grew to " + std::to_string(radius) + ")");
   }
 
-  static int count_within(std::span<const Candidate> found, double radius) {
+  static int count_within(const CandidateSpan& found, double radius) {
     const double r2max = radius * radius;
     int count = 0;
-    for (const auto& c : found) count += c.r2 < r2max;
+#pragma omp simd reduction(+ : count)
+    for (std::size_t k = 0; k < found.size; ++k) count += found.r2[k] < r2max;
     return count;
   }
 
   // Neighbour-number rule: keep h while the count is within tolerance (or is the count a shell
   // forced last time, `shell`), else put 2h half-way between the N-th and (N+1)-th nearest
   // candidate.  False when the candidates do not reach that far (the caller widens the search).
-  static bool settle_by_count(const SmoothingLengthRule& rule, double radius, std::span<Candidate> found, double& h,
+  static bool settle_by_count(const SmoothingLengthRule& rule, double radius, const CandidateSpan& found, double& h,
                               int& shell) {
     const int count = count_within(found, K::support * h);
     const bool accepted = std::abs(count - rule.neighbours) <= rule.tolerance || count == shell;
     if (accepted && K::support * h <= radius) return true;
     const auto n = static_cast<std::size_t>(std::llround(rule.neighbours));
-    if (found.size() < n + 1) return false;
-    auto by_distance = [](const Candidate& a, const Candidate& b) { return a.r2 < b.r2; };
-    std::nth_element(found.begin(), found.begin() + static_cast<std::ptrdiff_t>(n - 1), found.end(), by_distance);
-    const double rn = std::sqrt(found[n - 1].r2);
-    const double rn1 = std::sqrt(std::min_element(found.begin() + static_cast<std::ptrdiff_t>(n), found.end(), by_distance)->r2);
+    if (found.size < n + 1) return false;
+    // The N-th and (N+1)-th smallest distances, selected from a copy (the candidates keep
+    // their order).
+    thread_local std::vector<double> r2;
+    r2.assign(found.r2, found.r2 + found.size);
+    std::nth_element(r2.begin(), r2.begin() + static_cast<std::ptrdiff_t>(n - 1), r2.end());
+    const double rn = std::sqrt(r2[n - 1]);
+    const double rn1 = std::sqrt(*std::min_element(r2.begin() + static_cast<std::ptrdiff_t>(n), r2.end()));
     // Beyond `radius` the candidates may be incomplete, so order statistics there are not known.
     if (rn1 > radius) return false;
     // Distances that differ by round-off only form one shell (a lattice): no 2h separates them.
@@ -506,7 +595,7 @@ class NeighbourSearch {
   // just outside the shell, whichever count is nearer N (outside on a tie, and always outside a
   // shell at r = 0, so h > 0), and record that count in `count`.  False when the candidates end
   // at the shell (widen the search).
-  static bool settle_on_shell(double target, double shell, double tie, double radius, std::span<Candidate> found,
+  static bool settle_on_shell(double target, double shell, double tie, double radius, const CandidateSpan& found,
                               double& h, int& count) {
     // Counts below and up to the shell, and the nearest distances on either side, in one pass
     // (no sort: on a lattice every particle lands here every step).
@@ -514,18 +603,19 @@ class NeighbourSearch {
     const double below2 = below > 0 ? below * below : -1.0, above2 = (shell + tie) * (shell + tie);
     std::size_t inside = 0, through = 0;  // counts with r below the shell, and up to its outer edge
     double r_in2 = 0, r_out2 = std::numeric_limits<double>::infinity();
-    for (const Candidate& c : found) {
-      if (c.r2 < below2) {
+    for (std::size_t k = 0; k < found.size; ++k) {
+      const double r2 = found.r2[k];
+      if (r2 < below2) {
         ++inside;
-        r_in2 = std::max(r_in2, c.r2);
+        r_in2 = std::max(r_in2, r2);
       }
-      if (c.r2 <= above2) {
+      if (r2 <= above2) {
         ++through;
       } else {
-        r_out2 = std::min(r_out2, c.r2);
+        r_out2 = std::min(r_out2, r2);
       }
     }
-    if (through == found.size() || std::sqrt(r_out2) > radius) return false;
+    if (through == found.size || std::sqrt(r_out2) > radius) return false;
     const bool take_inside = inside > 0 && std::abs(static_cast<double>(inside) - target) <
                                                std::abs(static_cast<double>(through) - target);
     const double r_gap = std::sqrt(take_inside ? r_in2 : r_out2);
@@ -537,7 +627,7 @@ class NeighbourSearch {
   // Density rule: Newton iteration on f(h) = rho(h) h^D - N m / (V_D 2^D) = 0, with the gather
   // density rho(h) = sum_j m_j W(r_ij, h) + m_i W(0, h).  False when 2h leaves the candidates.
   static bool settle_by_density(const Particles<D>& p, const SmoothingLengthRule& rule, std::size_t i,
-                                double radius, std::span<const Candidate> found, double& h) {
+                                double radius, const CandidateSpan& found, double& h) {
     const double target = rule.neighbours * p.mass[i] / (unit_ball_volume<D>() * power<D>(K::support));
     double h_new = h;
     for (int iteration = 0; iteration < rule.max_iterations; ++iteration) {
@@ -548,12 +638,12 @@ class NeighbourSearch {
       // rho h^D = sum m_j sigma w(q_j): its derivative in h is sum m_j sigma dw/dq (-q_j/h).
       double sum = p.mass[i] * K::sigma * K::shape::evaluate(0.0).w, dsum = 0;
       const double inv_h = 1.0 / h_new;
-      for (const auto& c : found) {
-        const double q = std::sqrt(c.r2) * inv_h;
+      for (std::size_t k = 0; k < found.size; ++k) {
+        const double q = std::sqrt(found.r2[k]) * inv_h;
         if (q >= K::support) continue;
         const KernelShape s = K::shape::evaluate(q);
-        sum += p.mass[c.index] * K::sigma * s.w;
-        dsum -= p.mass[c.index] * K::sigma * s.dw_dq * q * inv_h;
+        sum += p.mass[found.index[k]] * K::sigma * s.w;
+        dsum -= p.mass[found.index[k]] * K::sigma * s.dw_dq * q * inv_h;
       }
       // f(h) = sum(h) - target * ... with rho h^D = sum: solve sum(h) = target.
       const double f = sum - target;
@@ -580,14 +670,16 @@ class NeighbourSearch {
     for (std::size_t i = block.begin; i < block.end; ++i) {
       block.kept_start.push_back(block.kept.size());
       const double reach_i = K::support * h[i];
+      const Candidates& cand = block.candidates;
       for (std::size_t c = block.candidate_start[i - block.begin]; c < block.candidate_start[i - block.begin + 1]; ++c) {
-        const Candidate& cand = block.candidates[c];
-        if (cand.r2 >= reach_i * reach_i) continue;
-        const Image image = reused ? current_image(cand.image, i, cand.index) : cand.image;
-        block.kept.push_back({cand.index, image});
-        const double reach_j = K::support * h[cand.index];
-        if (cand.r2 >= reach_j * reach_j) {
-          block.reverse.push_back({cand.index, {static_cast<std::uint32_t>(i), mirror_image<D>(image)}});
+        const double r2 = cand.r2[c];
+        if (r2 >= reach_i * reach_i) continue;
+        const std::uint32_t j = cand.index[c];
+        const Image image = reused ? current_image(cand.image[c], i, j) : cand.image[c];
+        block.kept.push_back({j, image});
+        const double reach_j = K::support * h[j];
+        if (r2 >= reach_j * reach_j) {
+          block.reverse.push_back({j, {static_cast<std::uint32_t>(i), mirror_image<D>(image)}});
         }
       }
     }
@@ -610,7 +702,8 @@ class NeighbourSearch {
   void assemble_list(const Box<D>& box) {
     std::size_t n = 0;
     for (const auto& b : blocks_) n = std::max(n, b.end);
-    std::vector<std::uint32_t> extra(n, 0);
+    std::vector<std::uint32_t>& extra = extra_;  // kept between updates: no allocation per step
+    extra.assign(n, 0);
     for (const auto& b : blocks_)
       for (const auto& r : b.reverse) ++extra[r.first];
     list_.offset_.assign(n + 1, 0);
@@ -619,7 +712,8 @@ class NeighbourSearch {
         list_.offset_[i + 1] = b.kept_start[i - b.begin + 1] - b.kept_start[i - b.begin] + extra[i];
     for (std::size_t i = 0; i < n; ++i) list_.offset_[i + 1] += list_.offset_[i];
     list_.entries_.resize(list_.offset_[n]);
-    std::vector<std::size_t> fill(n);
+    std::vector<std::size_t>& fill = fill_;
+    fill.resize(n);
 #pragma omp parallel for schedule(static) if (blocks_.size() > 1)
     for (std::size_t t = 0; t < blocks_.size(); ++t) {
       const Block& b = blocks_[t];
@@ -644,9 +738,11 @@ class NeighbourSearch {
   Box<D> built_box_;
   SmoothingLengthRule::Mode built_mode_ = SmoothingLengthRule::Mode::fixed;
   std::vector<Vec<D>> previous_position_;   // positions at the last update
-  std::vector<Vec<D>> unwrapped_;           // built position + displacement since, followed update by update
-  std::vector<std::array<int, D>> wrapped_;  // periods between unwrapped and stored position
+  std::array<std::vector<double>, D> unwrapped_;  // built position + displacement since, per axis
+  std::vector<Image> wrapped_;  // periods between unwrapped and stored position, packed like an image
   long searches_ = 0, reuses_ = 0;
+  std::vector<std::uint32_t> extra_;  // assemble_list: reverse pairs per particle
+  std::vector<std::size_t> fill_;     // assemble_list: where each particle's next entry goes
   // Neighbour-number rule: the count a lattice shell forced on each particle (-1: none), and
   // the rule it was forced under.
   std::vector<int> shell_count_;

@@ -131,6 +131,42 @@ TEST_CASE("neighbour-number rule on a lattice: the achievable count nearest the 
   check_counts<2>(p, sph::Box<2>::periodic_box(Vec<2>::Zero(), hi2), 18, 0);
 }
 
+TEST_CASE("neighbour-number rule on a lattice: a forced shell count is kept until it changes", "[smoothing_length]") {
+  // N = 64 +- 3 on a cubic lattice: the nearest achievable count is 56.  A second update of the
+  // unmoved lattice must accept 56 (the count the rule forced) and leave every h untouched; a
+  // compressed lattice changes the counts, and the rule must select again.
+  const auto box = sph::Box<3>::periodic_box(Vec<3>::Zero(), Vec<3>::Ones());
+  auto p = sph::make_particles<3>(sph::lattice<3>(LatticeType::cubic, Vec<3>::Zero(), Vec<3>::Ones(), 0.1), 1.0);
+  const auto rule = sph::SmoothingLengthRule::neighbour_number(64, 3);
+  sph::NeighbourSearch<3> search;
+  search.update(p, box, rule);
+  REQUIRE(*std::min_element(p.neighbour_count.begin(), p.neighbour_count.end()) == 56);
+  // Nudge h of one particle inside the shell gap: the count stays 56, so h must stay as set
+  // (selecting again would give back the common h).
+  const double common = p.smoothing_length[0];
+  p.smoothing_length[7] *= 1.001;
+  const auto nudged = p.smoothing_length;
+  search.update(p, box, rule);
+  search.update(p, box, rule);
+  CHECK(p.smoothing_length == nudged);
+  CHECK(p.neighbour_count == std::vector<int>(p.size(), 56));
+  // forget_candidates() forgets the forced counts too (particles may have been replaced by hand).
+  search.forget_candidates();
+  search.update(p, box, rule);
+  CHECK(p.smoothing_length[7] == common);
+  // Scale the lattice by 0.9 (box included): counts within the old h jump to 80, the rule
+  // selects again and lands on the shell gap of the new lattice, 56 neighbours.
+  const auto small = sph::Box<3>::periodic_box(Vec<3>::Zero(), Vec<3>::Constant(0.9));
+  for (auto& x : p.position) x *= 0.9;
+  sph::NeighbourSearch<3> fresh;
+  auto q = p;
+  fresh.update(q, small, rule);
+  search.update(p, small, rule);
+  CHECK(p.smoothing_length == q.smoothing_length);
+  CHECK(p.neighbour_count == std::vector<int>(p.size(), 56));
+  CHECK(brute_force_counts(p, small) == p.neighbour_count);
+}
+
 TEST_CASE("neighbour-number rule with a 10^6 density contrast", "[smoothing_length]") {
   // 3D, open: 2000 particles in the unit cube and 2000 in a cube of side 0.01 at its centre.
   // Number densities 2000 and 2e9: a contrast of 10^6, and h differs by a factor 100.
