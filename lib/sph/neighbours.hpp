@@ -555,9 +555,11 @@ class NeighbourSearch {
 
   static int count_within(const CandidateSpan& found, double radius) {
     const double r2max = radius * radius;
+    const double* r2 = found.r2;  // a local pointer: the loads are then contiguous, not gathered
+    const std::size_t size = found.size;
     int count = 0;
 #pragma omp simd reduction(+ : count)
-    for (std::size_t k = 0; k < found.size; ++k) count += found.r2[k] < r2max;
+    for (std::size_t k = 0; k < size; ++k) count += r2[k] < r2max;
     return count;
   }
 
@@ -571,13 +573,35 @@ class NeighbourSearch {
     if (accepted && K::support * h <= radius) return true;
     const auto n = static_cast<std::size_t>(std::llround(rule.neighbours));
     if (found.size < n + 1) return false;
-    // The N-th and (N+1)-th smallest distances, selected from a copy (the candidates keep
-    // their order).
-    thread_local std::vector<double> r2;
-    r2.assign(found.r2, found.r2 + found.size);
-    std::nth_element(r2.begin(), r2.begin() + static_cast<std::ptrdiff_t>(n - 1), r2.end());
-    const double rn = std::sqrt(r2[n - 1]);
-    const double rn1 = std::sqrt(*std::min_element(r2.begin() + static_cast<std::ptrdiff_t>(n), r2.end()));
+    // The N-th and (N+1)-th smallest distances.  `count` of them lie inside the present 2h, so
+    // both are found among the distances on one side of 2h only (typically a third of the
+    // candidates): select from a copy of that side (the candidates keep their order).
+    thread_local std::vector<double> side;
+    const double reach2 = K::support * h * K::support * h;
+    const auto inside = static_cast<std::size_t>(count);
+    double rn2, rn12;  // the two squared distances
+    if (inside == n) {
+      // The N-th is the farthest inside, the (N+1)-th the nearest outside.
+      rn2 = 0;
+      rn12 = std::numeric_limits<double>::infinity();
+      for (std::size_t k = 0; k < found.size; ++k) {
+        const double r2 = found.r2[k];
+        if (r2 < reach2) rn2 = std::max(rn2, r2);
+        else rn12 = std::min(rn12, r2);
+      }
+    } else {
+      const bool below = inside > n;  // both inside 2h, at ranks n and n + 1 there
+      side.clear();
+      for (std::size_t k = 0; k < found.size; ++k) {
+        if ((found.r2[k] < reach2) == below) side.push_back(found.r2[k]);
+      }
+      const std::size_t rank = below ? n - 1 : n - 1 - inside;  // of the N-th within `side`
+      std::nth_element(side.begin(), side.begin() + static_cast<std::ptrdiff_t>(rank), side.end());
+      rn2 = side[rank];
+      rn12 = *std::min_element(side.begin() + static_cast<std::ptrdiff_t>(rank) + 1, side.end());
+    }
+    const double rn = std::sqrt(rn2);
+    const double rn1 = std::sqrt(rn12);
     // Beyond `radius` the candidates may be incomplete, so order statistics there are not known.
     if (rn1 > radius) return false;
     // Distances that differ by round-off only form one shell (a lattice): no 2h separates them.
