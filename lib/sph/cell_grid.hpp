@@ -122,7 +122,6 @@ class CellGrid {
         if (first[a] > last[a]) return;
       }
     }
-    const double radius2 = radius * radius;
     // Cells are numbered x-fastest, so for fixed higher coordinates a run of x cells is one
     // contiguous range of sorted particles.  We walk the higher axes with an odometer and
     // each x run in as few pieces as its periodic wrapping allows.
@@ -131,26 +130,13 @@ class CellGrid {
       int row = 0, stride = cells_[0];
       std::array<int, D> shift{};
       Vec<D> offset = Vec<D>::Zero();
-      double row_distance2 = 0;  // from the point to the row, across the higher axes
       for (int a = 1; a < D; ++a) {
         const int c = wrap_axis(raw[a], a, shift[a]);
         offset[a] = shift[a] * box_.length(a);
         row += c * stride;
         stride *= cells_[a];
-        // (Widened by a hair: the cell of a particle comes from a rounded product.)
-        const double slack = 1e-9 * cell_size_[a];
-        const double low = origin_[a] + raw[a] * cell_size_[a] - slack, high = low + cell_size_[a] + 2 * slack;
-        const double gap = std::max({0.0, low - point[a], point[a] - high});
-        row_distance2 += gap * gap;
       }
-      // Only the x cells that the sphere's chord through this row touches (a row outside the
-      // sphere has none): the sphere fills about half the cube of cells around it.
-      if (row_distance2 < radius2) {
-        const double chord = std::sqrt(radius2 - row_distance2);
-        int x_first = std::max(first[0], cell_coordinate(point[0] - chord, 0));
-        int x_last = std::min(last[0], cell_coordinate(point[0] + chord, 0));
-        if (x_first <= x_last) for_each_in_x_run(point, radius2, x_first, x_last, row, shift, offset, f);
-      }
+      for_each_in_x_run(point, first[0], last[0], row, shift, offset, f);
       // Advance the odometer over the higher axes.
       int a = 1;
       while (a < D && raw[a] == last[a]) {
@@ -194,7 +180,7 @@ class CellGrid {
 
   // The x cells first..last of one row, split where the periodic wrap changes the image.
   template <class F>
-  void for_each_in_x_run(const Vec<D>& point, double radius2, int first, int last, int row,
+  void for_each_in_x_run(const Vec<D>& point, int first, int last, int row,
                          std::array<int, D> shift, Vec<D> offset, F& f) const {
     int c = first;
     while (c <= last) {
@@ -203,7 +189,7 @@ class CellGrid {
       offset[0] = shift[0] * box_.length(0);
       const Image image = pack_image<D>(shift);
       const Vec<D> shifted_point = point - offset;
-      scan_range(cell_start_[row + begin], cell_start_[row + end + 1], shifted_point, radius2, image, f);
+      scan_range(cell_start_[row + begin], cell_start_[row + end + 1], shifted_point, image, f);
       c += end - begin + 1;
     }
   }
@@ -212,7 +198,7 @@ class CellGrid {
   // The distances are computed from per-axis coordinate arrays in a branch-free loop the
   // compiler vectorises.
   template <class F>
-  void scan_range(std::uint32_t first, std::uint32_t last, const Vec<D>& point, double, Image image, F& f) const {
+  void scan_range(std::uint32_t first, std::uint32_t last, const Vec<D>& point, Image image, F& f) const {
     constexpr std::uint32_t block = scan_block;
     double r2[block];
     for (std::uint32_t start = first; start < last; start += block) {
