@@ -78,20 +78,28 @@ struct PositionView {
   std::array<const double*, D> x;  ///< x[a][i]: coordinate a of particle i
   std::array<double, D> period;    ///< box length on periodic axes, 0 on open ones
 
+  /// The view of arrays x[a] with the periodic images of `box`.
+  static PositionView of(const std::array<const double*, D>& x, const Box<D>& box) {
+    PositionView v{x, {}};
+    for (int a = 0; a < D; ++a) v.period[a] = box.periodic[a] ? box.length(a) : 0.0;
+    return v;
+  }
   /// Component a of r_ij = x_i - x_j - (image offset), without a branch.
   double separation(int a, std::size_t i, const Neighbour& n) const {
     return x[a][i] - x[a][n.index] - image_shift(n.image, a) * period[a];
   }
-  /// |r_ij|.
-  double distance(std::size_t i, const Neighbour& n) const {
+  /// |r_ij|^2.
+  double distance2(std::size_t i, const Neighbour& n) const {
     double r2 = 0;
 #pragma GCC unroll 3
     for (int a = 0; a < D; ++a) {
       const double d = separation(a, i, n);
       r2 += d * d;
     }
-    return std::sqrt(r2);
+    return r2;
   }
+  /// |r_ij|.
+  double distance(std::size_t i, const Neighbour& n) const { return std::sqrt(distance2(i, n)); }
 };
 
 /// The positions (or velocities) one array per axis, for PositionView.  In 1D a vector of
@@ -116,14 +124,7 @@ class PositionArrays {
   }
   /// Component a of every particle.
   const double* axis(int a) const { return data_[a]; }
-  PositionView<D> view(const Box<D>& box) const {
-    PositionView<D> v;
-    for (int a = 0; a < D; ++a) {
-      v.x[a] = data_[a];
-      v.period[a] = box.periodic[a] ? box.length(a) : 0.0;
-    }
-    return v;
-  }
+  PositionView<D> view(const Box<D>& box) const { return PositionView<D>::of(data_, box); }
 
  private:
   std::array<std::vector<double>, D> copy_;
@@ -410,6 +411,9 @@ class NeighbourSearch {
       moved2 = std::max(moved2, d2);
     }
     const double moved = std::sqrt(moved2);
+    std::array<const double*, D> unwrapped_axes;
+    for (int a = 0; a < D; ++a) unwrapped_axes[a] = unwrapped_[a].data();
+    const PositionView<D> unwrapped = PositionView<D>::of(unwrapped_axes, built_box_);
     int failed = 0;
 #pragma omp parallel num_threads(static_cast<int>(blocks_.size()))
     {
@@ -422,7 +426,7 @@ class NeighbourSearch {
         // behind is the start of the full search, and must not depend on the thread count.
         Block& block = blocks_[t];
         bool ok = true;
-        for (std::size_t i = block.begin; i < block.end; ++i) ok = settle_from_candidates(p, rule, block, i, moved) && ok;
+        for (std::size_t i = block.begin; i < block.end; ++i) ok = settle_from_candidates(p, rule, block, i, moved, unwrapped) && ok;
         if (!ok) {
 #pragma omp atomic write
           failed = 1;
@@ -439,28 +443,15 @@ class NeighbourSearch {
 
   // Refresh particle i's candidate distances and settle its h within the radius they still
   // cover; false if that radius is not enough.
+  // `unwrapped` views the unwrapped positions, in whose frame the images recorded at the search
+  // still hold.
   bool settle_from_candidates(Particles<D>& p, const SmoothingLengthRule& rule, Block& block, std::size_t i,
-                              double moved) {
+                              double moved, const PositionView<D>& unwrapped) {
     const std::size_t first = block.candidate_start[i - block.begin], last = block.candidate_start[i - block.begin + 1];
     const CandidateSpan found = span_of(block.candidates, first, last);
-    // The new distances, in the frame of the unwrapped positions (where the images recorded at
-    // the search still hold).
-    PositionView<D> u;
-    for (int a = 0; a < D; ++a) {
-      u.x[a] = unwrapped_[a].data();
-      u.period[a] = built_box_.periodic[a] ? built_box_.length(a) : 0.0;
-    }
+    const PositionView<D> u = unwrapped;  // a private copy: its pointers stay in registers
 #pragma omp simd simdlen(8) if(simd : D > 1)
-    for (std::size_t k = 0; k < found.size; ++k) {
-      const Neighbour c{found.index[k], found.image[k]};
-      double r2 = 0;
-#pragma GCC unroll 3
-      for (int a = 0; a < D; ++a) {
-        const double d = u.separation(a, i, c);
-        r2 += d * d;
-      }
-      found.r2[k] = r2;
-    }
+    for (std::size_t k = 0; k < found.size; ++k) found.r2[k] = u.distance2(i, {found.index[k], found.image[k]});
     const double covered = block.reach[i - block.begin] - 2.0 * moved;
     double& h = p.smoothing_length[i];
     bool settled = true;
