@@ -32,10 +32,15 @@
 #include "sph/dimension.hpp"
 #include "sph/error.hpp"
 #include "sph/kernel.hpp"
+#include "sph/local_motion.hpp"
 #include "sph/parallel.hpp"
 #include "sph/particles.hpp"
 
 #include <omp.h>
+
+#if defined(__AVX512F__)
+#include <immintrin.h>
+#endif
 
 #include <algorithm>
 #include <array>
@@ -52,6 +57,63 @@ struct Neighbour {
   std::uint32_t index;
   Image image;
 };
+
+namespace detail {
+
+/// Append to `out` (with the distances to `out_r2`) the entries k < n of (index, image, r2)
+/// with r2[k] < limit2, in order, and return how many.  When `wrapped` is given, each image is
+/// translated to image - own + wrapped[index] (see NeighbourSearch::current_image).  `out`
+/// and `out_r2` must have room for n entries: entries past the kept ones may be overwritten.
+///
+/// The plain loop writes every entry and advances the end past the kept ones only (no
+/// branch to mispredict), but still moves one entry per iteration.  With AVX-512 the entries
+/// go eight at a time: a mask of the kept ones, compressed to the front of the register and
+/// stored whole (compressing in the register, not into memory: on some processors the store
+/// form is microcoded and slow).  `portable` forces the plain loop, so tests can compare both.
+template <bool portable = false>
+inline std::size_t keep_closer(const std::uint32_t* index, const Image* image, const double* r2, std::size_t n,
+                               double limit2, const Image* wrapped, Image own, Neighbour* out, double* out_r2) {
+  static_assert(sizeof(Neighbour) == 8, "a Neighbour must pack into one 64-bit lane");
+  std::size_t end = 0, k = 0;
+#if defined(__AVX512F__) && defined(__AVX512VL__)
+#pragma GCC diagnostic push
+#pragma GCC diagnostic ignored "-Wmaybe-uninitialized"  // (GCC 12, inside its own AVX-512 headers)
+  if constexpr (!portable) {
+    const __m512d limit = _mm512_set1_pd(limit2);
+    const __m256i low = _mm256_set1_epi32(0x7f7f7f7f), high = _mm256_set1_epi32(static_cast<int>(0x80808080u));
+    const __m256i own_image = _mm256_set1_epi32(static_cast<int>(own));
+    for (; k + 8 <= n; k += 8) {
+      const __m512d d = _mm512_loadu_pd(r2 + k);
+      const __mmask8 kept = _mm512_cmp_pd_mask(d, limit, _CMP_LT_OQ);
+      const __m256i j = _mm256_loadu_si256(reinterpret_cast<const __m256i*>(index + k));
+      __m256i img = _mm256_loadu_si256(reinterpret_cast<const __m256i*>(image + k));
+      if (wrapped) {
+        // subtract_images(img, own), then add_images(., wrapped[j]), eight lanes at once.
+        const __m256i diff = _mm256_xor_si256(
+            _mm256_sub_epi32(_mm256_or_si256(img, high), _mm256_and_si256(own_image, low)),
+            _mm256_andnot_si256(_mm256_xor_si256(img, own_image), high));
+        const __m256i w = _mm256_i32gather_epi32(reinterpret_cast<const int*>(wrapped), j, 4);
+        img = _mm256_xor_si256(_mm256_add_epi32(_mm256_and_si256(diff, low), _mm256_and_si256(w, low)),
+                               _mm256_and_si256(_mm256_xor_si256(diff, w), high));
+      }
+      const __m512i pair = _mm512_or_si512(_mm512_cvtepu32_epi64(j), _mm512_slli_epi64(_mm512_cvtepu32_epi64(img), 32));
+      _mm512_storeu_si512(out + end, _mm512_maskz_compress_epi64(kept, pair));
+      _mm512_storeu_pd(out_r2 + end, _mm512_maskz_compress_pd(kept, d));
+      end += static_cast<std::size_t>(__builtin_popcount(kept));
+    }
+  }
+#pragma GCC diagnostic pop
+#endif
+  for (; k < n; ++k) {
+    const Image img = wrapped ? add_images(subtract_images(image[k], own), wrapped[index[k]]) : image[k];
+    out[end] = {index[k], img};
+    out_r2[end] = r2[k];
+    end += r2[k] < limit2;
+  }
+  return end;
+}
+
+}  // namespace detail
 
 /// How smoothing lengths are chosen.
 struct SmoothingLengthRule {
@@ -131,31 +193,33 @@ class PositionArrays {
   std::array<const double*, D> data_{};
 };
 
-/// The symmetric neighbour list in compressed-row form.
+/// The symmetric neighbour list: for each particle, its neighbours one after another.  The
+/// entries live in the buffers of the NeighbourSearch that wrote the list (it keeps them
+/// particle after particle, so a pass reads them in order): a list is valid until that
+/// search's next update, and is used by reference, not copied.
 template <int D>
 class NeighbourList {
  public:
   /// The neighbours of particle i.
-  std::span<const Neighbour> of(std::size_t i) const {
-    return {entries_.data() + offset_[i], entries_.data() + offset_[i + 1]};
-  }
+  std::span<const Neighbour> of(std::size_t i) const { return {first_[i], count_[i]}; }
   /// r_ij = x_i - x_j - (image offset): the separation from neighbour n of particle i.
   Vec<D> separation(const std::vector<Vec<D>>& x, std::size_t i, const Neighbour& n) const {
     Vec<D> r = x[i] - x[n.index];
     if (n.image != 0) r -= image_offset<D>(n.image, box_);
     return r;
   }
-  std::size_t particles() const { return offset_.empty() ? 0 : offset_.size() - 1; }
+  std::size_t particles() const { return first_.size(); }
   /// Total number of (i, j) entries: every interacting pair counts twice.
-  std::size_t entries() const { return entries_.size(); }
+  std::size_t entries() const { return entries_; }
   /// The box the periodic images refer to.
   const Box<D>& box() const { return box_; }
 
  private:
   template <int, class>
   friend class NeighbourSearch;
-  std::vector<std::size_t> offset_;
-  std::vector<Neighbour> entries_;
+  std::vector<const Neighbour*> first_;
+  std::vector<std::uint32_t> count_;
+  std::size_t entries_ = 0;
   Box<D> box_;  // the box the images refer to
 };
 
@@ -190,12 +254,8 @@ class NeighbourSearch {
       shell_count_.assign(n, -1);
       shell_rule_ = rule;
     }
-    if (try_reuse(p, box, rule)) {
-      ++reuses_;
-      return;
-    }
+    if (try_reuse(p, box, rule)) return;
     full_search(p, box, rule);
-    ++searches_;
   }
 
   /// Make the next update a full search (the reuse test covers motion, not particles moved or
@@ -205,52 +265,109 @@ class NeighbourSearch {
     shell_count_.clear();
   }
 
-  /// How many updates searched the grid, and how many reused the candidates of the last search.
+  /// Updates that searched the grid (for every particle or for some), of which full searches
+  /// (every particle); updates that searched for none (all reused their candidates); and the
+  /// particle searches done in all.
   long searches() const { return searches_; }
+  long full_searches() const { return full_searches_; }
   long reuses() const { return reuses_; }
+  long particle_searches() const { return particle_searches_; }
+  /// The candidates all particles hold now (each is within its particle's reach).
+  std::size_t candidates() const {
+    std::size_t total = 0;
+    for (std::size_t i = 0; i < first_.size(); ++i) total += last_[i] - first_[i];
+    return total;
+  }
 
  private:
   // The full search: grid, candidates within (1 + search_margin) 2h of every particle, h by the
-  // rule, the list.  It also records what a later update needs to reuse the candidates.
+  // rule, the list.  It also starts the frame in which later updates reuse the candidates.
   void full_search(Particles<D>& p, const Box<D>& box, const SmoothingLengthRule& rule) {
     const std::size_t n = p.size();
     initial_guess(p, box, rule);
-    grid_.build(p.position, box, cell_size(p.smoothing_length));
-    const int threads = n < parallel_threshold ? 1 : omp_get_max_threads();
-    blocks_.resize(static_cast<std::size_t>(threads));
-    std::string error;
-    std::size_t team = 1;
-#pragma omp parallel num_threads(threads)
-    {
-      const auto t = static_cast<std::size_t>(omp_get_thread_num());
-      const std::size_t nt = static_cast<std::size_t>(omp_get_num_threads());
-      if (t == 0) team = nt;
-      Block& block = blocks_[t];
-      block.begin = n * t / nt;
-      block.end = n * (t + 1) / nt;
-      try {
-        find_candidates(p, rule, block);
-      } catch (const Error& e) {
-#pragma omp critical
-        if (error.empty()) error = e.what();
-      }
-#pragma omp barrier
-      if (error.empty()) keep_neighbours(p, block);
+    const std::size_t threads = n < parallel_threshold ? 1 : static_cast<std::size_t>(omp_get_max_threads());
+    blocks_.resize(threads);
+    for (std::size_t t = 0; t < threads; ++t) {
+      blocks_[t].begin = n * t / threads;
+      blocks_[t].end = n * (t + 1) / threads;
+      blocks_[t].candidates.clear();
+      blocks_[t].live = 0;
     }
-    if (!error.empty()) throw Error(error);
-    blocks_.resize(team);  // the runtime may have given fewer threads than asked for
-    assemble_list(box);
-    require_neighbours(p);
-    built_position_ = p.position;
+    first_.assign(n, 0);
+    last_.assign(n, 0);
+    reach_.assign(n, 0.0);
+    start_frame(p);
+    built_box_ = box;
+    built_mode_ = rule.mode;
+    search_again_.assign(n, 1);
+    search_flagged(p, box, rule);
+    finish_list(p, box, Kept::none);
+    reusable_ = true;
+    ++full_searches_;
+  }
+
+  // Unwrapped positions and the epoch start at the stored positions: no particle has wrapped.
+  void start_frame(const Particles<D>& p) {
+    const std::size_t n = p.size();
     previous_position_ = p.position;
     for (int a = 0; a < D; ++a) {
       unwrapped_[a].resize(n);
       for (std::size_t i = 0; i < n; ++i) unwrapped_[a][i] = p.position[i][a];
+      epoch_[a] = unwrapped_[a];
     }
     wrapped_.assign(n, 0);
-    built_box_ = box;
-    built_mode_ = rule.mode;
-    reusable_ = true;
+    any_wrapped_ = false;
+  }
+
+  // Search the grid for every particle flagged in search_again_ (from its present h), replacing
+  // its candidates; count the search.
+  void search_flagged(Particles<D>& p, const Box<D>& box, const SmoothingLengthRule& rule) {
+    grid_.build(p.position, box, cell_size(p.smoothing_length));
+    std::string error;
+    long searched = 0;
+#pragma omp parallel for schedule(static, 1) num_threads(static_cast<int>(blocks_.size())) reduction(+ : searched) if (blocks_.size() > 1)
+    for (std::size_t t = 0; t < blocks_.size(); ++t) {
+      try {
+        searched += search_block(p, rule, blocks_[t]);
+      } catch (const Error& e) {
+#pragma omp critical
+        if (error.empty()) error = e.what();
+      }
+    }
+    if (!error.empty()) throw Error(error);
+    ++searches_;
+    particle_searches_ += searched;
+  }
+
+  // Which pairs within 2h_i are kept already when the list is finished: none (after a full
+  // search), all (a reuse keeps them as it settles each particle, while the distances are at
+  // hand), or all but those of the particles searched again.
+  enum class Kept { none, all, all_but_searched };
+
+  // Keep the pairs within 2 max(h_i, h_j) and write the list.
+  void finish_list(const Particles<D>& p, const Box<D>& box, Kept kept) {
+    std::array<const double*, D> unwrapped_axes;
+    for (int a = 0; a < D; ++a) unwrapped_axes[a] = unwrapped_[a].data();
+    const PositionView<D> unwrapped = PositionView<D>::of(unwrapped_axes, built_box_);
+#pragma omp parallel for schedule(static, 1) num_threads(static_cast<int>(blocks_.size())) if (blocks_.size() > 1)
+    for (std::size_t t = 0; t < blocks_.size(); ++t) {
+      Block& block = blocks_[t];
+      if (kept != Kept::all) {
+        KeptPairs& out = block.spare_kept;
+        out.clear();
+        for (std::size_t i = block.begin; i < block.end; ++i) {
+          if (kept == Kept::none || search_again_[i]) {
+            keep_own(out, i, refreshed(block, i, unwrapped), p.smoothing_length[i]);
+          } else {
+            out.append(block.kept, i - block.begin);
+          }
+        }
+        out.start.push_back(out.count);
+        std::swap(block.kept, block.spare_kept);
+      }
+      find_reverse(p, block);
+    }
+    assemble_list(p, box);
   }
 
  public:
@@ -264,11 +381,15 @@ class NeighbourSearch {
 
  private:
   // Candidates one array per field, so the refresh of their distances runs in SIMD registers.
-  // The arrays only grow; `count` entries are in use.
-  struct Candidates {
+  // The arrays only grow; `count` entries are in use.  What a particle keeps from step to step
+  // is who its candidates are (index and image: StoredCandidates); their squared distances are
+  // worked out afresh each step into a scratch array, and only a search's result carries them
+  // (Candidates).
+  template <bool with_distance>
+  struct CandidateArrays {
     std::vector<std::uint32_t> index;
     std::vector<Image> image;
-    std::vector<double> r2;
+    std::vector<double> r2;  // (empty without distances)
     std::size_t count = 0;
     std::size_t size() const { return count; }
     void clear() { count = 0; }
@@ -278,17 +399,24 @@ class NeighbourSearch {
       const std::size_t n = std::max(count + more, 2 * index.size());
       index.resize(n);
       image.resize(n);
-      r2.resize(n);
+      if constexpr (with_distance) r2.resize(n);
     }
-    void append(const Candidates& other) {
-      reserve_more(other.count);
-      std::copy_n(other.index.begin(), other.count, index.begin() + static_cast<std::ptrdiff_t>(count));
-      std::copy_n(other.image.begin(), other.count, image.begin() + static_cast<std::ptrdiff_t>(count));
-      std::copy_n(other.r2.begin(), other.count, r2.begin() + static_cast<std::ptrdiff_t>(count));
-      count += other.count;
+    // Append entries first..last of `other` (who they are; distances only between two
+    // arrays that both have them).
+    template <bool other_distance>
+    void append(const CandidateArrays<other_distance>& other, std::size_t first, std::size_t last) {
+      const std::size_t m = last - first;
+      reserve_more(m);
+      const auto from = static_cast<std::ptrdiff_t>(first), to = static_cast<std::ptrdiff_t>(count);
+      std::copy_n(other.index.begin() + from, m, index.begin() + to);
+      std::copy_n(other.image.begin() + from, m, image.begin() + to);
+      if constexpr (with_distance && other_distance) std::copy_n(other.r2.begin() + from, m, r2.begin() + to);
+      count += m;
     }
   };
-  // The candidates of one particle.
+  using Candidates = CandidateArrays<true>;
+  using StoredCandidates = CandidateArrays<false>;
+  // The candidates of one particle, with their squared distances.
   struct CandidateSpan {
     const std::uint32_t* index;
     const Image* image;
@@ -298,16 +426,52 @@ class NeighbourSearch {
   static CandidateSpan span_of(Candidates& c, std::size_t first, std::size_t last) {
     return {c.index.data() + first, c.image.data() + first, c.r2.data() + first, last - first};
   }
+  // The pairs (r_ij < 2h_i) of a range of particles, particle after particle, with their
+  // squared distances: pairs and r2 entries start[k]..start[k + 1] belong to the k-th particle.
+  // The arrays only grow; `count` entries are in use.
+  struct KeptPairs {
+    std::vector<std::size_t> start;
+    std::vector<Neighbour> pairs;
+    std::vector<double> r2;
+    std::size_t count = 0;
+    void clear() {
+      start.clear();
+      count = 0;
+    }
+    void reserve_more(std::size_t more) {
+      if (count + more <= pairs.size()) return;
+      pairs.resize(std::max(count + more, 2 * pairs.size()));
+      r2.resize(pairs.size());
+    }
+    // Append the pairs of the k-th particle of `other`.
+    void append(const KeptPairs& other, std::size_t k) {
+      const std::size_t first = other.start[k], m = other.start[k + 1] - first;
+      start.push_back(count);
+      reserve_more(m);
+      std::copy_n(other.pairs.begin() + static_cast<std::ptrdiff_t>(first), m, pairs.begin() + static_cast<std::ptrdiff_t>(count));
+      std::copy_n(other.r2.begin() + static_cast<std::ptrdiff_t>(first), m, r2.begin() + static_cast<std::ptrdiff_t>(count));
+      count += m;
+    }
+  };
   // The work of one thread: a contiguous range of particles, its candidates and the pairs it
-  // keeps.  One-sided pairs (r_ij < 2h_i but >= 2h_j) are recorded so j gets them too.
+  // keeps.  Particle i's candidates are entries first_[i]..last_[i] of `candidates`; a particle
+  // searched again appends its new ones, and the block is compacted when more than half its
+  // entries are stale.  The kept pairs (r_ij < 2h_i) go to `kept`, particle after particle,
+  // with their squared distances; one-sided pairs (r_ij < 2h_i but >= 2h_j) are recorded in
+  // `reverse` so that j gets them too.
   struct Block {
     std::size_t begin = 0, end = 0;
-    std::vector<std::size_t> candidate_start;
-    Candidates candidates;
-    std::vector<double> reach;  // the radius within which each particle's candidates are complete
-    std::vector<std::size_t> kept_start;
-    std::vector<Neighbour> kept;
+    StoredCandidates candidates, spare;  // (spare: the buffer a compaction copies into)
+    std::size_t live = 0;                // entries some particle still refers to
+    Candidates found;                    // the candidates of the particle being searched
+    std::vector<double> r2;              // the distances of the particle being settled
+    KeptPairs kept, spare_kept;  // (spare_kept: the buffer a merge writes into)
     std::vector<std::pair<std::uint32_t, Neighbour>> reverse;  // (j, entry for j)
+    // The candidates of particle i with room for their distances.
+    CandidateSpan span(std::size_t first, std::size_t last) {
+      if (r2.size() < last - first) r2.resize(2 * (last - first));
+      return {candidates.index.data() + first, candidates.image.data() + first, r2.data(), last - first};
+    }
   };
 
   static void validate_rule(const SmoothingLengthRule& rule) {
@@ -362,104 +526,128 @@ class NeighbourSearch {
     return fraction * K::support * median * (1.0 + search_margin);
   }
 
-  // --- Reusing the candidates of the last full search ------------------------------------
+  // --- Reusing candidates ---------------------------------------------------------------
   //
-  // A full search keeps, for each particle i, every j within R_i = (1 + margin) 2h_i.  Let d be
-  // the largest distance any particle has moved since, measured from the mean displacement of
-  // all of them (a common drift does not change any separation, since
-  // |D_i - D_j| <= |D_i - c| + |D_j - c| for any c).  A pair that is now closer than 2h_i
-  // was at most 2h_i + 2d apart then; so if 2h_i + 2d <= R_i for every i, the old candidates
-  // still hold every neighbour, and a step needs only their new distances -- no grid, no
-  // search.  The distances are taken between "unwrapped" positions (position at the search
-  // plus the displacements of every update since, each by the nearest periodic image), in which the images recorded
-  // at the search stay valid; a particle that has since crossed a periodic face gets its images
-  // translated when the list is written.  When the test fails for any particle, or the set,
-  // box or rule changed, the update falls back to a full search.  The outcome (and so every
-  // result) is the same for any number of threads.
+  // A search keeps, for particle i, every j within R_i = (1 + margin) 2h_i: the candidates are
+  // complete within the "reach" R_i of the positions at that time, the epoch.  Let d_j be the
+  // displacement of j since the epoch.  A j that is not a candidate was at least R_i from i
+  // then, so now it is at least R_i - |d_i - d_j| away.  LocalMotion bounds |d_i - d_j| over
+  // the particles now near i by b_i, from the displacements in the cells around i; so the
+  // candidates are still complete within covered_i = R_i - b_i, and while 2h_i fits in it a
+  // step needs only their new distances -- no grid, no search.  The bound looks at
+  // differences of motion only, and only nearby: the plateau behind a shock, moving as one,
+  // keeps its candidates, and so does the gas at rest ahead of it.
+  //
+  // Particles whose 2h_i no longer fits are searched again; so, in the same update, are those
+  // that have used up half their margin (so that searches come in batches rather than a few
+  // every step).  The update then starts a new epoch: the others keep their candidates, now
+  // complete within covered_i, which becomes their reach.  Distances are taken between
+  // "unwrapped" positions (position at the full search plus the displacements of every update
+  // since, each by the nearest periodic image), in which the images of a candidate stay valid;
+  // a particle that has since crossed a periodic face gets its images translated when the list
+  // is written.  Everything is decided per particle, so the outcome (and every result) is the
+  // same for any number of threads.  A new set, box or rule falls back to a full search.
   bool try_reuse(Particles<D>& p, const Box<D>& box, const SmoothingLengthRule& rule) {
     const std::size_t n = p.size();
-    if (!reusable_ || n != built_position_.size() || rule.mode != built_mode_ || !same_box(box, built_box_)) return false;
-    // Displacements since the search, and the whole periods between unwrapped and stored positions.
-    // Follow each particle since the last update by the nearest image (no particle crosses a
-    // quarter of a periodic box in one step: if one seems to, search again), and accumulate its
-    // unwrapped position; note how many periods it lies from its stored, wrapped position.
-    Vec<D> mean = Vec<D>::Zero();
-    for (std::size_t i = 0; i < n; ++i) {
-      const Vec<D> step = box.separation(p.position[i], previous_position_[i]);
-      for (int a = 0; a < D; ++a) {
-        if (box.periodic[a] && std::abs(step[a]) > 0.25 * box.length(a)) return false;
-      }
-      previous_position_[i] = p.position[i];
-      std::array<int, D> periods{};
-      for (int a = 0; a < D; ++a) {
-        double& u = unwrapped_[a][i];
-        u += step[a];
-        mean[a] += u - built_position_[i][a];
-        if (box.periodic[a]) periods[a] = static_cast<int>(std::lround((u - p.position[i][a]) / box.length(a)));
-        if (std::abs(periods[a]) > 100) return false;  // (an image shift must fit in a byte)
-      }
-      wrapped_[i] = pack_image<D>(periods);
-    }
-    mean /= static_cast<double>(n);
-    double moved2 = 0;
-    for (std::size_t i = 0; i < n; ++i) {
-      double d2 = 0;
-      for (int a = 0; a < D; ++a) {
-        const double d = unwrapped_[a][i] - built_position_[i][a] - mean[a];
-        d2 += d * d;
-      }
-      moved2 = std::max(moved2, d2);
-    }
-    const double moved = std::sqrt(moved2);
+    if (!reusable_ || n != first_.size() || rule.mode != built_mode_ || !same_box(box, built_box_)) return false;
+    double largest_h = 0;
+    if (!advance_frame(p, box, largest_h)) return false;
+    // How far each particle's neighbourhood has moved relative to it.
+    std::array<const double*, D> moved;
+    for (int a = 0; a < D; ++a) moved[a] = moved_[a].data();
+    motion_.build(p.position, box, moved, K::support * largest_h * (1.0 + search_margin));
+    const double cell = motion_.cell_size();
+    covered_.resize(n);
+#pragma omp parallel for schedule(static) if (n >= parallel_threshold)
+    for (std::size_t i = 0; i < n; ++i) covered_[i] = std::min(reach_[i], cell) - motion_.bound(i);
+    // Settle every particle from its candidates; flag the ones to search again.
     std::array<const double*, D> unwrapped_axes;
     for (int a = 0; a < D; ++a) unwrapped_axes[a] = unwrapped_[a].data();
     const PositionView<D> unwrapped = PositionView<D>::of(unwrapped_axes, built_box_);
+    search_again_.resize(n);
     int failed = 0;
-#pragma omp parallel num_threads(static_cast<int>(blocks_.size()))
-    {
-      const auto t = static_cast<std::size_t>(omp_get_thread_num());
-      if (static_cast<std::size_t>(omp_get_num_threads()) != blocks_.size()) {
-#pragma omp atomic write
-        failed = 1;
-      } else {
-        // Every particle is settled, even after one has failed: the h a failed attempt leaves
-        // behind is the start of the full search, and must not depend on the thread count.
-        Block& block = blocks_[t];
-        bool ok = true;
-        for (std::size_t i = block.begin; i < block.end; ++i) ok = settle_from_candidates(p, rule, block, i, moved, unwrapped) && ok;
-        if (!ok) {
-#pragma omp atomic write
-          failed = 1;
-        }
+#pragma omp parallel for schedule(static, 1) num_threads(static_cast<int>(blocks_.size())) reduction(| : failed) if (blocks_.size() > 1)
+    for (std::size_t t = 0; t < blocks_.size(); ++t) {
+      Block& block = blocks_[t];
+      block.kept.clear();
+      for (std::size_t i = block.begin; i < block.end; ++i) {
+        const bool settled = settle_from_candidates(p, rule, block, i, covered_[i], unwrapped);
+        failed |= !settled;
+        search_again_[i] = !settled || covered_[i] < K::support * p.smoothing_length[i] * (1.0 + 0.5 * search_margin);
+        // (a particle that failed keeps nothing now: it is kept after its search)
+        if (!settled) block.kept.start.push_back(block.kept.count);
       }
-#pragma omp barrier
-      if (!failed) keep_neighbours(p, blocks_[t], true);
+      block.kept.start.push_back(block.kept.count);
     }
-    if (failed) return false;
-    assemble_list(box);
-    require_neighbours(p);
+    if (failed) {
+      // Search again where needed (from the h the failed settling left, which does not depend
+      // on the thread count either), and start a new epoch.
+      search_flagged(p, box, rule);
+      for (std::size_t i = 0; i < n; ++i) {
+        if (!search_again_[i]) reach_[i] = covered_[i];
+      }
+      for (int a = 0; a < D; ++a) epoch_[a] = unwrapped_[a];
+    } else {
+      ++reuses_;
+    }
+    finish_list(p, box, failed ? Kept::all_but_searched : Kept::all);
     return true;
   }
 
+  // Follow each particle since the last update by the nearest image (no particle crosses a
+  // quarter of a periodic box in one step: if one seems to, return false for a full search),
+  // accumulate its unwrapped position and its displacement since the epoch, and note how many
+  // periods it lies from its stored, wrapped position.  Also returns the largest h.
+  bool advance_frame(const Particles<D>& p, const Box<D>& box, double& largest_h) {
+    const std::size_t n = p.size();
+    for (int a = 0; a < D; ++a) moved_[a].resize(n);
+    int bad = 0, any = 0;
+    double h_max = 0;
+#pragma omp parallel for schedule(static) reduction(| : bad, any) reduction(max : h_max) if (n >= parallel_threshold)
+    for (std::size_t i = 0; i < n; ++i) {
+      const Vec<D> step = box.separation(p.position[i], previous_position_[i]);
+      previous_position_[i] = p.position[i];
+      std::array<int, D> periods{};
+      for (int a = 0; a < D; ++a) {
+        if (box.periodic[a] && std::abs(step[a]) > 0.25 * box.length(a)) bad = 1;
+        double& u = unwrapped_[a][i];
+        u += step[a];
+        moved_[a][i] = u - epoch_[a][i];
+        if (box.periodic[a]) periods[a] = static_cast<int>(std::floor((u - p.position[i][a]) / box.length(a) + 0.5));
+        // (image shifts are kept in a signed byte; after 50 periods, start afresh)
+        if (std::abs(periods[a]) > 50) bad = 1;
+      }
+      wrapped_[i] = pack_image<D>(periods);
+      any |= wrapped_[i] != 0;
+      h_max = std::max(h_max, p.smoothing_length[i]);
+    }
+    any_wrapped_ = any != 0;
+    largest_h = h_max;
+    return bad == 0;
+  }
+
   // Refresh particle i's candidate distances and settle its h within the radius they still
-  // cover; false if that radius is not enough.
-  // `unwrapped` views the unwrapped positions, in whose frame the images recorded at the search
-  // still hold.
+  // cover; false if that radius is not enough.  `unwrapped` views the unwrapped positions, in
+  // whose frame the images of the candidates hold.
   bool settle_from_candidates(Particles<D>& p, const SmoothingLengthRule& rule, Block& block, std::size_t i,
-                              double moved, const PositionView<D>& unwrapped) {
-    const std::size_t first = block.candidate_start[i - block.begin], last = block.candidate_start[i - block.begin + 1];
-    const CandidateSpan found = span_of(block.candidates, first, last);
-    const PositionView<D> u = unwrapped;  // a private copy: its pointers stay in registers
-#pragma omp simd simdlen(8) if(simd : D > 1)
-    for (std::size_t k = 0; k < found.size; ++k) found.r2[k] = u.distance2(i, {found.index[k], found.image[k]});
-    const double covered = block.reach[i - block.begin] - 2.0 * moved;
+                              double covered, const PositionView<D>& unwrapped) {
+    const CandidateSpan found = refreshed(block, i, unwrapped);
     double& h = p.smoothing_length[i];
     bool settled = true;
     if (rule.mode == SmoothingLengthRule::Mode::neighbour_number) settled = settle_by_count(rule, covered, found, h, shell_count_[i]);
     if (rule.mode == SmoothingLengthRule::Mode::density) settled = settle_by_density(p, rule, i, covered, found, h);
     if (!settled || K::support * h > covered) return false;
-    p.neighbour_count[i] = count_within(found, K::support * h);
+    p.neighbour_count[i] = keep_own(block.kept, i, found, h);
     return true;
+  }
+
+  // Particle i's candidates with their present distances (in the frame of the unwrapped positions).
+  CandidateSpan refreshed(Block& block, std::size_t i, const PositionView<D>& unwrapped) const {
+    const CandidateSpan found = block.span(first_[i], last_[i]);
+    const PositionView<D> u = unwrapped;  // a private copy: its pointers stay in registers
+#pragma omp simd simdlen(8) if(simd : D > 1)
+    for (std::size_t k = 0; k < found.size; ++k) found.r2[k] = u.distance2(i, {found.index[k], found.image[k]});
+    return found;
   }
 
   static bool same_box(const Box<D>& a, const Box<D>& b) {
@@ -468,24 +656,47 @@ class NeighbourSearch {
 
   // The image of candidate j of i in the frame of the stored (wrapped) positions.
   Image current_image(Image built, std::size_t i, std::size_t j) const {
-    if ((wrapped_[i] | wrapped_[j]) == 0) return built;  // neither has crossed a periodic face
-    std::array<int, D> shift{};
-    for (int a = 0; a < D; ++a) shift[a] = image_shift(built, a) - image_shift(wrapped_[i], a) + image_shift(wrapped_[j], a);
-    return pack_image<D>(shift);
+    return add_images(subtract_images(built, wrapped_[i]), wrapped_[j]);
   }
 
-  // Phase 1 (per thread): gather candidates of each particle and settle its h.
-  void find_candidates(Particles<D>& p, const SmoothingLengthRule& rule, Block& block) {
-    block.candidate_start.clear();
-    block.candidates.clear();
-    block.reach.clear();
-    Candidates found;
+  // Search the grid for the flagged particles of one block: h by the rule, the candidates
+  // (appended, their images in the frame of the unwrapped positions) and the radius searched.
+  long search_block(Particles<D>& p, const SmoothingLengthRule& rule, Block& block) {
+    long searched = 0;
+    Candidates& found = block.found;
     for (std::size_t i = block.begin; i < block.end; ++i) {
-      block.reach.push_back(settle_particle(p, rule, i, found));
-      block.candidate_start.push_back(block.candidates.size());
-      block.candidates.append(found);
+      if (!search_again_[i]) continue;
+      reach_[i] = settle_particle(p, rule, i, found);
+      if (any_wrapped_) to_unwrapped_frame(found, i);
+      block.live -= last_[i] - first_[i];
+      first_[i] = block.candidates.size();
+      block.candidates.append(found, 0, found.size());
+      last_[i] = block.candidates.size();
+      block.live += found.size();
+      ++searched;
     }
-    block.candidate_start.push_back(block.candidates.size());
+    if (block.candidates.size() > 2 * block.live + 4096) compact(block);
+    return searched;
+  }
+
+  // Copy the candidates still referred to into the spare buffer, which becomes the block's.
+  void compact(Block& block) {
+    StoredCandidates& to = block.spare;
+    to.clear();
+    for (std::size_t i = block.begin; i < block.end; ++i) {
+      const std::size_t first = to.size();
+      to.append(block.candidates, first_[i], last_[i]);
+      first_[i] = first;
+      last_[i] = to.size();
+    }
+    std::swap(block.candidates, block.spare);
+  }
+
+  // The grid reports images in the frame of the stored (wrapped) positions; translate those of
+  // particle i's candidates to the frame of the unwrapped ones (the inverse of current_image).
+  void to_unwrapped_frame(Candidates& found, std::size_t i) const {
+    for (std::size_t k = 0; k < found.size(); ++k)
+      found.image[k] = subtract_images(add_images(found.image[k], wrapped_[i]), wrapped_[found.index[k]]);
   }
 
   // Gather the candidates of particle i within radius (the particle itself excluded).
@@ -529,6 +740,14 @@ class NeighbourSearch {
       }();
       if (settled) {
         p.neighbour_count[i] = count_within(found, K::support * h);
+        // A widened search (common on a lattice, where the next shell may lie beyond the first
+        // radius) keeps only the candidates within the margin of the final h: every later step
+        // refreshes each one.
+        const double wanted = K::support * h * (1.0 + search_margin);
+        if (radius > wanted) {
+          keep_within(all, wanted);
+          radius = wanted;
+        }
         return radius;
       }
       // Past a few times the grid's extent a wider search finds nothing new on open axes, and
@@ -542,6 +761,19 @@ class NeighbourSearch {
     }
     throw Error("particle " + std::to_string(i) + " at " + to_string<D>(p.position[i]) +
                 ": no smoothing length found (search radius grew to " + std::to_string(radius) + ")");
+  }
+
+  // Drop the candidates at or beyond `radius` (keeping the order of the rest).
+  static void keep_within(Candidates& c, double radius) {
+    const double r2max = radius * radius;
+    std::size_t end = 0;
+    for (std::size_t k = 0; k < c.count; ++k) {
+      c.index[end] = c.index[k];
+      c.image[end] = c.image[k];
+      c.r2[end] = c.r2[k];
+      end += c.r2[k] < r2max;
+    }
+    c.count = end;
   }
 
   static int count_within(const CandidateSpan& found, double radius) {
@@ -675,30 +907,41 @@ class NeighbourSearch {
                 std::to_string(rule.max_iterations) + " iterations (last h = " + std::to_string(h_new) + ")");
   }
 
-  // Phase 2 (per thread, all h final): keep pairs with r_ij < 2 max(h_i, h_j).  A candidate
-  // list covers r < 2h_i; a pair with 2h_i <= r < 2h_j is found from j's side and handed to i.
-  void keep_neighbours(const Particles<D>& p, Block& block, bool reused = false) const {
-    block.kept_start.clear();
-    block.kept.clear();
+  // Keep particle i's pairs with r_ij < 2h_i (appended to `kept`, with their distances,
+  // images in the frame of the stored positions); returns how many.
+  int keep_own(KeptPairs& kept, std::size_t i, const CandidateSpan& found, double h) const {
+    kept.start.push_back(kept.count);
+    kept.reserve_more(found.size);
+    const double reach2 = K::support * h * K::support * h;
+    const std::size_t count =
+        detail::keep_closer(found.index, found.image, found.r2, found.size, reach2, any_wrapped_ ? wrapped_.data() : nullptr,
+                            wrapped_[i], kept.pairs.data() + kept.count, kept.r2.data() + kept.count);
+    kept.count += count;
+    return static_cast<int>(count);
+  }
+
+  // With every h final: the kept pairs (i, j) with r_ij >= 2h_j, which j's own candidates do
+  // not give it, are handed to j.  Few particles have any (a vectorised count finds them).
+  void find_reverse(const Particles<D>& p, Block& block) const {
     block.reverse.clear();
-    const auto& h = p.smoothing_length;
+    const double* h = p.smoothing_length.data();
+    const Neighbour* kept = block.kept.pairs.data();
+    const double* r2 = block.kept.r2.data();
     for (std::size_t i = block.begin; i < block.end; ++i) {
-      block.kept_start.push_back(block.kept.size());
-      const double reach_i = K::support * h[i];
-      const Candidates& cand = block.candidates;
-      for (std::size_t c = block.candidate_start[i - block.begin]; c < block.candidate_start[i - block.begin + 1]; ++c) {
-        const double r2 = cand.r2[c];
-        if (r2 >= reach_i * reach_i) continue;
-        const std::uint32_t j = cand.index[c];
-        const Image image = reused ? current_image(cand.image[c], i, j) : cand.image[c];
-        block.kept.push_back({j, image});
-        const double reach_j = K::support * h[j];
-        if (r2 >= reach_j * reach_j) {
-          block.reverse.push_back({j, {static_cast<std::uint32_t>(i), mirror_image<D>(image)}});
-        }
+      const std::size_t first = block.kept.start[i - block.begin], last = block.kept.start[i - block.begin + 1];
+      int one_sided = 0;
+#pragma omp simd reduction(+ : one_sided)
+      for (std::size_t e = first; e < last; ++e) {
+        const double reach_j = K::support * h[kept[e].index];
+        one_sided += r2[e] >= reach_j * reach_j;
+      }
+      if (one_sided == 0) continue;
+      for (std::size_t e = first; e < last; ++e) {
+        const double reach_j = K::support * h[kept[e].index];
+        if (r2[e] >= reach_j * reach_j)
+          block.reverse.push_back({kept[e].index, {static_cast<std::uint32_t>(i), mirror_image<D>(kept[e].image)}});
       }
     }
-    block.kept_start.push_back(block.kept.size());
   }
 
   // A particle with no neighbour at all cannot be part of a fluid: stop and name it.
@@ -711,53 +954,76 @@ class NeighbourSearch {
     }
   }
 
-  // Join the blocks into one list, in particle order; reverse pairs go after each particle's
-  // own (in the order of the particle that found them), so the list is the same for any
-  // number of threads.
-  void assemble_list(const Box<D>& box) {
-    std::size_t n = 0;
-    for (const auto& b : blocks_) n = std::max(n, b.end);
-    std::vector<std::uint32_t>& extra = extra_;  // kept between updates: no allocation per step
-    extra.assign(n, 0);
-    for (const auto& b : blocks_)
-      for (const auto& r : b.reverse) ++extra[r.first];
-    list_.offset_.assign(n + 1, 0);
-    for (const auto& b : blocks_)
-      for (std::size_t i = b.begin; i < b.end; ++i)
-        list_.offset_[i + 1] = b.kept_start[i - b.begin + 1] - b.kept_start[i - b.begin] + extra[i];
-    for (std::size_t i = 0; i < n; ++i) list_.offset_[i + 1] += list_.offset_[i];
-    list_.entries_.resize(list_.offset_[n]);
-    std::vector<std::size_t>& fill = fill_;
-    fill.resize(n);
-#pragma omp parallel for schedule(static) if (blocks_.size() > 1)
+  // Point the list at each particle's kept pairs.  A particle that also receives one-sided
+  // pairs gets its own pairs copied to a side buffer with those after them (in the order of the
+  // particles that found them), so the list is the same for any number of threads.  Stops
+  // with an error naming the first particle that has no neighbour at all.
+  void assemble_list(const Particles<D>& p, const Box<D>& box) {
+    const std::size_t n = p.size();
+    list_.first_.resize(n);
+    list_.count_.resize(n);
+    std::size_t entries = 0, lonely = n;
+#pragma omp parallel for schedule(static, 1) num_threads(static_cast<int>(blocks_.size())) reduction(+ : entries) reduction(min : lonely) if (blocks_.size() > 1)
     for (std::size_t t = 0; t < blocks_.size(); ++t) {
       const Block& b = blocks_[t];
       for (std::size_t i = b.begin; i < b.end; ++i) {
-        const auto first = b.kept.begin() + static_cast<std::ptrdiff_t>(b.kept_start[i - b.begin]);
-        const auto last = b.kept.begin() + static_cast<std::ptrdiff_t>(b.kept_start[i - b.begin + 1]);
-        std::copy(first, last, list_.entries_.begin() + static_cast<std::ptrdiff_t>(list_.offset_[i]));
-        fill[i] = list_.offset_[i] + static_cast<std::size_t>(last - first);
+        const std::size_t first = b.kept.start[i - b.begin], count = b.kept.start[i - b.begin + 1] - first;
+        list_.first_[i] = b.kept.pairs.data() + first;
+        list_.count_[i] = static_cast<std::uint32_t>(count);
+        entries += count;
+        if (count == 0) lonely = std::min(lonely, i);
       }
     }
-    for (const auto& b : blocks_)
-      for (const auto& r : b.reverse) list_.entries_[fill[r.first]++] = r.second;
+    // The one-sided pairs, grouped by the particle that receives them (stable: finder order).
+    auto& handed = handed_;
+    handed.clear();
+    for (const auto& b : blocks_) handed.insert(handed.end(), b.reverse.begin(), b.reverse.end());
+    std::stable_sort(handed.begin(), handed.end(), [](const auto& x, const auto& y) { return x.first < y.first; });
+    std::size_t side_size = 0;
+    for (std::size_t k = 0; k < handed.size(); ++k) {
+      if (k == 0 || handed[k].first != handed[k - 1].first) side_size += list_.count_[handed[k].first];
+      ++side_size;
+    }
+    side_.resize(side_size);
+    std::size_t at = 0;
+    for (std::size_t k = 0; k < handed.size();) {
+      const std::uint32_t j = handed[k].first;
+      Neighbour* out = side_.data() + at;
+      std::copy_n(list_.first_[j], list_.count_[j], out);
+      std::size_t count = list_.count_[j];
+      for (; k < handed.size() && handed[k].first == j; ++k) out[count++] = handed[k].second;
+      list_.first_[j] = out;
+      list_.count_[j] = static_cast<std::uint32_t>(count);
+      at += count;
+    }
+    list_.entries_ = entries + handed.size();
     list_.box_ = box;
+    if (lonely < n) require_neighbours(p);  // (it may have received pairs since)
   }
 
   CellGrid<D> grid_;
   std::vector<Block> blocks_;
   NeighbourList<D> list_;
-  // What the last full search saw, for reusing its candidates.
+  // Per particle: its candidates (entries first_..last_ of its block's) and the radius within
+  // which they are complete at the epoch (reach_); this update's covered radius (see try_reuse)
+  // and whether it is searched again.
+  std::vector<std::size_t> first_, last_;
+  std::vector<double> reach_, covered_;
+  std::vector<std::uint8_t> search_again_;
+  // The frame the candidates live in, since the last full search.
   bool reusable_ = false;
-  std::vector<Vec<D>> built_position_;
   Box<D> built_box_;
   SmoothingLengthRule::Mode built_mode_ = SmoothingLengthRule::Mode::fixed;
-  std::vector<Vec<D>> previous_position_;   // positions at the last update
-  std::array<std::vector<double>, D> unwrapped_;  // built position + displacement since, per axis
+  std::vector<Vec<D>> previous_position_;         // positions at the last update
+  std::array<std::vector<double>, D> unwrapped_;  // position at the full search + displacements since
+  std::array<std::vector<double>, D> epoch_;      // unwrapped position at the start of the epoch
+  std::array<std::vector<double>, D> moved_;      // displacement since the epoch
   std::vector<Image> wrapped_;  // periods between unwrapped and stored position, packed like an image
-  long searches_ = 0, reuses_ = 0;
-  std::vector<std::uint32_t> extra_;  // assemble_list: reverse pairs per particle
-  std::vector<std::size_t> fill_;     // assemble_list: where each particle's next entry goes
+  bool any_wrapped_ = false;
+  LocalMotion<D> motion_;
+  long searches_ = 0, full_searches_ = 0, reuses_ = 0, particle_searches_ = 0;
+  std::vector<std::pair<std::uint32_t, Neighbour>> handed_;  // assemble_list: the one-sided pairs
+  std::vector<Neighbour> side_;  // the pairs of particles that receive one-sided ones
   // Neighbour-number rule: the count a lattice shell forced on each particle (-1: none), and
   // the rule it was forced under.
   std::vector<int> shell_count_;

@@ -1,0 +1,160 @@
+#pragma once
+/// \file
+/// \brief How far nearby particles can have moved relative to each other: the bound that lets
+/// a neighbour search keep a particle's old candidates while its neighbourhood moves little.
+///
+/// Given the current positions x_j and displacements d_j (since some earlier time), sort the
+/// particles into cells of at least a chosen size s and take, for each cell, the bounding box
+/// of the displacements of its particles; then widen every cell's box to cover its 3^D
+/// neighbouring cells as well.  A particle j within s of particle i lies in one of the cells
+/// next to i's, so both d_i and d_j lie in the widened box B of i's cell, and with c the
+/// centre of B
+/// \f[ |d_i - d_j| \le |d_i - c| + |d_j - c| \le |d_i - c| + \tfrac12\,\mathrm{diag}(B). \f]
+/// That right-hand side is bound(i).  A region that moves as a whole -- the plateau behind a
+/// shock -- has a small box however far it has travelled: only differences of motion count.
+
+#include "sph/box.hpp"
+#include "sph/dimension.hpp"
+#include "sph/error.hpp"
+
+#include <algorithm>
+#include <array>
+#include <cmath>
+#include <cstdint>
+#include <limits>
+#include <vector>
+
+namespace sph {
+
+template <int D>
+class LocalMotion {
+ public:
+  /// Bound |d_i - d_j| for every pair closer than (at least) `cell_size` now.  `x` are the
+  /// current positions (wrapped into the box on periodic axes), d[a][i] the displacements.
+  void build(const std::vector<Vec<D>>& x, const Box<D>& box, const std::array<const double*, D>& d, double cell_size) {
+    require(!x.empty(), "local motion: no particles");
+    require(std::isfinite(cell_size) && cell_size > 0, "local motion: the cell size must be positive and finite");
+    const std::size_t n = x.size();
+    set_geometry(x, box, cell_size);
+    const std::size_t cells = total_cells();
+    constexpr double inf = std::numeric_limits<double>::infinity();
+    for (int a = 0; a < D; ++a) {
+      lo_[a].assign(cells, inf);
+      hi_[a].assign(cells, -inf);
+    }
+    cell_of_.resize(n);
+    for (std::size_t i = 0; i < n; ++i) {
+      std::size_t cell = 0, stride = 1;
+      for (int a = 0; a < D; ++a) {
+        const double c = std::floor((x[i][a] - origin_[a]) / size_[a]);
+        const int k = static_cast<int>(std::clamp(c, 0.0, static_cast<double>(cells_[a] - 1)));
+        cell += static_cast<std::size_t>(k) * stride;
+        stride *= static_cast<std::size_t>(cells_[a]);
+      }
+      cell_of_[i] = static_cast<std::uint32_t>(cell);
+      for (int a = 0; a < D; ++a) {
+        lo_[a][cell] = std::min(lo_[a][cell], d[a][i]);
+        hi_[a][cell] = std::max(hi_[a][cell], d[a][i]);
+      }
+    }
+    for (int axis = 0; axis < D; ++axis) widen_along(axis, box.periodic[axis]);
+    bound_.resize(n);
+    for (std::size_t i = 0; i < n; ++i) {
+      const std::uint32_t cell = cell_of_[i];
+      double off2 = 0, half2 = 0;
+      for (int a = 0; a < D; ++a) {
+        const double centre = 0.5 * (lo_[a][cell] + hi_[a][cell]);
+        const double half = 0.5 * (hi_[a][cell] - lo_[a][cell]);
+        off2 += (d[a][i] - centre) * (d[a][i] - centre);
+        half2 += half * half;
+      }
+      bound_[i] = std::sqrt(off2) + std::sqrt(half2);
+    }
+  }
+
+  /// The cell size used: at least the one asked for (larger when the cells would be too many).
+  double cell_size() const {
+    double s = size_[0];
+    for (int a = 1; a < D; ++a) s = std::min(s, size_[a]);
+    return s;
+  }
+  /// An upper bound of |d_i - d_j| over every particle j (or periodic image of j) now closer
+  /// than cell_size() to particle i.
+  double bound(std::size_t i) const { return bound_[i]; }
+
+ private:
+  std::size_t total_cells() const {
+    std::size_t total = 1;
+    for (int a = 0; a < D; ++a) total *= static_cast<std::size_t>(cells_[a]);
+    return total;
+  }
+
+  void set_geometry(const std::vector<Vec<D>>& x, const Box<D>& box, double target) {
+    Vec<D> lo = x[0], hi = x[0];
+    for (const auto& xi : x) {
+      lo = lo.cwiseMin(xi);
+      hi = hi.cwiseMax(xi);
+    }
+    require(lo.allFinite() && hi.allFinite(), "local motion: a particle position is not finite");
+    const double max_cells = 2.0 * static_cast<double>(x.size()) + 64.0;
+    for (int attempt = 0; attempt < 200; ++attempt) {
+      double total = 1;
+      for (int a = 0; a < D; ++a) {
+        // Whole cells of at least `target`: a periodic axis is tiled exactly, an open one
+        // spans the particles.
+        const double span = box.periodic[a] ? box.length(a) : hi[a] - lo[a];
+        cells_[a] = std::max(1, static_cast<int>(std::min(std::floor(span / target), 1e6)));
+        size_[a] = std::max(span / cells_[a], target);
+        origin_[a] = box.periodic[a] ? box.lower[a] : lo[a];
+        total *= cells_[a];
+      }
+      if (total <= max_cells) return;
+      target *= 1.25;
+    }
+    throw Error("local motion: could not choose a cell size (particles spread over too large a range)");
+  }
+
+  // Widen every cell's box over its two neighbours along `axis` (periodically wrapped or cut at
+  // the ends); done along each axis in turn, this covers the 3^D neighbourhood.
+  void widen_along(int axis, bool periodic) {
+    const int n = cells_[axis];
+    if (n == 1) return;
+    std::size_t stride = 1;
+    for (int a = 0; a < axis; ++a) stride *= static_cast<std::size_t>(cells_[a]);
+    const std::size_t cells = total_cells();
+    const std::size_t line = stride * static_cast<std::size_t>(n);
+    std::vector<double> lo(static_cast<std::size_t>(n)), hi(static_cast<std::size_t>(n));
+    for (int a = 0; a < D; ++a) {
+      for (std::size_t outer = 0; outer < cells; outer += line) {
+        for (std::size_t inner = 0; inner < stride; ++inner) {
+          const std::size_t base = outer + inner;
+          for (int k = 0; k < n; ++k) {
+            lo[static_cast<std::size_t>(k)] = lo_[a][base + static_cast<std::size_t>(k) * stride];
+            hi[static_cast<std::size_t>(k)] = hi_[a][base + static_cast<std::size_t>(k) * stride];
+          }
+          for (int k = 0; k < n; ++k) {
+            double l = lo[static_cast<std::size_t>(k)], h = hi[static_cast<std::size_t>(k)];
+            for (int s : {-1, 1}) {
+              int m = k + s;
+              if (periodic) m = (m + n) % n;
+              if (m < 0 || m >= n) continue;
+              l = std::min(l, lo[static_cast<std::size_t>(m)]);
+              h = std::max(h, hi[static_cast<std::size_t>(m)]);
+            }
+            lo_[a][base + static_cast<std::size_t>(k) * stride] = l;
+            hi_[a][base + static_cast<std::size_t>(k) * stride] = h;
+          }
+        }
+      }
+    }
+  }
+
+  std::array<int, D> cells_{};
+  Vec<D> origin_ = Vec<D>::Zero();
+  Vec<D> size_ = Vec<D>::Ones();
+  std::array<std::vector<double>, D> lo_, hi_;  // per cell and axis: the displacements' range
+  std::vector<std::uint32_t> cell_of_;
+  std::vector<double> bound_;
+};
+
+}  // namespace sph
