@@ -16,6 +16,7 @@
 #include "sph/box.hpp"
 #include "sph/dimension.hpp"
 #include "sph/error.hpp"
+#include "sph/parallel.hpp"
 
 #include <algorithm>
 #include <array>
@@ -43,6 +44,7 @@ class LocalMotion {
       hi_[a].assign(cells, -inf);
     }
     cell_of_.resize(n);
+#pragma omp parallel for schedule(static) if (n >= parallel_threshold)
     for (std::size_t i = 0; i < n; ++i) {
       std::size_t cell = 0, stride = 1;
       for (int a = 0; a < D; ++a) {
@@ -52,6 +54,9 @@ class LocalMotion {
         stride *= static_cast<std::size_t>(cells_[a]);
       }
       cell_of_[i] = static_cast<std::uint32_t>(cell);
+    }
+    for (std::size_t i = 0; i < n; ++i) {
+      const std::uint32_t cell = cell_of_[i];
       for (int a = 0; a < D; ++a) {
         lo_[a][cell] = std::min(lo_[a][cell], d[a][i]);
         hi_[a][cell] = std::max(hi_[a][cell], d[a][i]);
@@ -59,6 +64,7 @@ class LocalMotion {
     }
     for (int axis = 0; axis < D; ++axis) widen_along(axis, box.periodic[axis]);
     bound_.resize(n);
+#pragma omp parallel for schedule(static) if (n >= parallel_threshold)
     for (std::size_t i = 0; i < n; ++i) {
       const std::uint32_t cell = cell_of_[i];
       double off2 = 0, half2 = 0;

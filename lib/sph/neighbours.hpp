@@ -352,18 +352,13 @@ class NeighbourSearch {
 #pragma omp parallel for schedule(static, 1) num_threads(static_cast<int>(blocks_.size())) if (blocks_.size() > 1)
     for (std::size_t t = 0; t < blocks_.size(); ++t) {
       Block& block = blocks_[t];
+      if (kept == Kept::none) block.kept.clear(block.end - block.begin);
       if (kept != Kept::all) {
-        KeptPairs& out = block.spare_kept;
-        out.clear();
+        // (the pairs of a particle searched again go after the others: the list finds each
+        // particle's pairs wherever they are)
         for (std::size_t i = block.begin; i < block.end; ++i) {
-          if (kept == Kept::none || search_again_[i]) {
-            keep_own(out, i, refreshed(block, i, unwrapped), p.smoothing_length[i]);
-          } else {
-            out.append(block.kept, i - block.begin);
-          }
+          if (kept == Kept::none || search_again_[i]) keep_own(block, i, refreshed(block, i, unwrapped), p.smoothing_length[i]);
         }
-        out.start.push_back(out.count);
-        std::swap(block.kept, block.spare_kept);
       }
       find_reverse(p, block);
     }
@@ -426,31 +421,24 @@ class NeighbourSearch {
   static CandidateSpan span_of(Candidates& c, std::size_t first, std::size_t last) {
     return {c.index.data() + first, c.image.data() + first, c.r2.data() + first, last - first};
   }
-  // The pairs (r_ij < 2h_i) of a range of particles, particle after particle, with their
-  // squared distances: pairs and r2 entries start[k]..start[k + 1] belong to the k-th particle.
-  // The arrays only grow; `count` entries are in use.
+  // The pairs (r_ij < 2h_i) of a range of particles, with their squared distances: those of the
+  // k-th particle are entries first[k] .. first[k] + count[k].  Written particle after
+  // particle; the arrays only grow, `used` entries are in use.
   struct KeptPairs {
-    std::vector<std::size_t> start;
+    std::vector<std::size_t> first;
+    std::vector<std::uint32_t> count;
     std::vector<Neighbour> pairs;
     std::vector<double> r2;
-    std::size_t count = 0;
-    void clear() {
-      start.clear();
-      count = 0;
+    std::size_t used = 0;
+    void clear(std::size_t particles) {
+      first.assign(particles, 0);
+      count.assign(particles, 0);
+      used = 0;
     }
     void reserve_more(std::size_t more) {
-      if (count + more <= pairs.size()) return;
-      pairs.resize(std::max(count + more, 2 * pairs.size()));
+      if (used + more <= pairs.size()) return;
+      pairs.resize(std::max(used + more, 2 * pairs.size()));
       r2.resize(pairs.size());
-    }
-    // Append the pairs of the k-th particle of `other`.
-    void append(const KeptPairs& other, std::size_t k) {
-      const std::size_t first = other.start[k], m = other.start[k + 1] - first;
-      start.push_back(count);
-      reserve_more(m);
-      std::copy_n(other.pairs.begin() + static_cast<std::ptrdiff_t>(first), m, pairs.begin() + static_cast<std::ptrdiff_t>(count));
-      std::copy_n(other.r2.begin() + static_cast<std::ptrdiff_t>(first), m, r2.begin() + static_cast<std::ptrdiff_t>(count));
-      count += m;
     }
   };
   // The work of one thread: a contiguous range of particles, its candidates and the pairs it
@@ -465,7 +453,7 @@ class NeighbourSearch {
     std::size_t live = 0;                // entries some particle still refers to
     Candidates found;                    // the candidates of the particle being searched
     std::vector<double> r2;              // the distances of the particle being settled
-    KeptPairs kept, spare_kept;  // (spare_kept: the buffer a merge writes into)
+    KeptPairs kept;
     std::vector<std::pair<std::uint32_t, Neighbour>> reverse;  // (j, entry for j)
     // The candidates of particle i with room for their distances.
     CandidateSpan span(std::size_t first, std::size_t last) {
@@ -569,15 +557,13 @@ class NeighbourSearch {
 #pragma omp parallel for schedule(static, 1) num_threads(static_cast<int>(blocks_.size())) reduction(| : failed) if (blocks_.size() > 1)
     for (std::size_t t = 0; t < blocks_.size(); ++t) {
       Block& block = blocks_[t];
-      block.kept.clear();
+      block.kept.clear(block.end - block.begin);
       for (std::size_t i = block.begin; i < block.end; ++i) {
         const bool settled = settle_from_candidates(p, rule, block, i, covered_[i], unwrapped);
         failed |= !settled;
         search_again_[i] = !settled || covered_[i] < K::support * p.smoothing_length[i] * (1.0 + 0.5 * search_margin);
         // (a particle that failed keeps nothing now: it is kept after its search)
-        if (!settled) block.kept.start.push_back(block.kept.count);
       }
-      block.kept.start.push_back(block.kept.count);
     }
     if (failed) {
       // Search again where needed (from the h the failed settling left, which does not depend
@@ -637,7 +623,7 @@ class NeighbourSearch {
     if (rule.mode == SmoothingLengthRule::Mode::neighbour_number) settled = settle_by_count(rule, covered, found, h, shell_count_[i]);
     if (rule.mode == SmoothingLengthRule::Mode::density) settled = settle_by_density(p, rule, i, covered, found, h);
     if (!settled || K::support * h > covered) return false;
-    p.neighbour_count[i] = keep_own(block.kept, i, found, h);
+    p.neighbour_count[i] = keep_own(block, i, found, h);
     return true;
   }
 
@@ -909,14 +895,16 @@ class NeighbourSearch {
 
   // Keep particle i's pairs with r_ij < 2h_i (appended to `kept`, with their distances,
   // images in the frame of the stored positions); returns how many.
-  int keep_own(KeptPairs& kept, std::size_t i, const CandidateSpan& found, double h) const {
-    kept.start.push_back(kept.count);
+  int keep_own(Block& block, std::size_t i, const CandidateSpan& found, double h) const {
+    KeptPairs& kept = block.kept;
     kept.reserve_more(found.size);
     const double reach2 = K::support * h * K::support * h;
     const std::size_t count =
         detail::keep_closer(found.index, found.image, found.r2, found.size, reach2, any_wrapped_ ? wrapped_.data() : nullptr,
-                            wrapped_[i], kept.pairs.data() + kept.count, kept.r2.data() + kept.count);
-    kept.count += count;
+                            wrapped_[i], kept.pairs.data() + kept.used, kept.r2.data() + kept.used);
+    kept.first[i - block.begin] = kept.used;
+    kept.count[i - block.begin] = static_cast<std::uint32_t>(count);
+    kept.used += count;
     return static_cast<int>(count);
   }
 
@@ -928,7 +916,7 @@ class NeighbourSearch {
     const Neighbour* kept = block.kept.pairs.data();
     const double* r2 = block.kept.r2.data();
     for (std::size_t i = block.begin; i < block.end; ++i) {
-      const std::size_t first = block.kept.start[i - block.begin], last = block.kept.start[i - block.begin + 1];
+      const std::size_t first = block.kept.first[i - block.begin], last = first + block.kept.count[i - block.begin];
       int one_sided = 0;
 #pragma omp simd reduction(+ : one_sided)
       for (std::size_t e = first; e < last; ++e) {
@@ -967,36 +955,42 @@ class NeighbourSearch {
     for (std::size_t t = 0; t < blocks_.size(); ++t) {
       const Block& b = blocks_[t];
       for (std::size_t i = b.begin; i < b.end; ++i) {
-        const std::size_t first = b.kept.start[i - b.begin], count = b.kept.start[i - b.begin + 1] - first;
+        const std::size_t first = b.kept.first[i - b.begin], count = b.kept.count[i - b.begin];
         list_.first_[i] = b.kept.pairs.data() + first;
         list_.count_[i] = static_cast<std::uint32_t>(count);
         entries += count;
         if (count == 0) lonely = std::min(lonely, i);
       }
     }
-    // The one-sided pairs, grouped by the particle that receives them (stable: finder order).
-    auto& handed = handed_;
-    handed.clear();
-    for (const auto& b : blocks_) handed.insert(handed.end(), b.reverse.begin(), b.reverse.end());
-    std::stable_sort(handed.begin(), handed.end(), [](const auto& x, const auto& y) { return x.first < y.first; });
-    std::size_t side_size = 0;
-    for (std::size_t k = 0; k < handed.size(); ++k) {
-      if (k == 0 || handed[k].first != handed[k - 1].first) side_size += list_.count_[handed[k].first];
-      ++side_size;
+    // The one-sided pairs, grouped by the particle that receives them, each group in the
+    // order of the particles that found them (a counting sort; blocks are in particle order).
+    std::size_t handed = 0;
+    for (const auto& b : blocks_) handed += b.reverse.size();
+    if (handed > 0) {
+      auto& received = received_;  // per particle: how many pairs it receives, then where they go
+      received.assign(n + 1, 0);
+      for (const auto& b : blocks_)
+        for (const auto& r : b.reverse) ++received[r.first + 1];
+      std::size_t side_size = 0;
+      for (std::size_t j = 0; j < n; ++j) {
+        if (received[j + 1] > 0) side_size += list_.count_[j] + received[j + 1];
+      }
+      side_.resize(side_size);
+      // Each receiving particle's own pairs first, then room for the ones it receives.
+      std::size_t at = 0;
+      for (std::size_t j = 0; j < n; ++j) {
+        const std::size_t extra = received[j + 1];
+        if (extra == 0) continue;
+        std::copy_n(list_.first_[j], list_.count_[j], side_.data() + at);
+        list_.first_[j] = side_.data() + at;
+        received[j + 1] = at + list_.count_[j];  // where the next received pair goes
+        list_.count_[j] += static_cast<std::uint32_t>(extra);
+        at += list_.count_[j];
+      }
+      for (const auto& b : blocks_)
+        for (const auto& r : b.reverse) side_[received[r.first + 1]++] = r.second;
     }
-    side_.resize(side_size);
-    std::size_t at = 0;
-    for (std::size_t k = 0; k < handed.size();) {
-      const std::uint32_t j = handed[k].first;
-      Neighbour* out = side_.data() + at;
-      std::copy_n(list_.first_[j], list_.count_[j], out);
-      std::size_t count = list_.count_[j];
-      for (; k < handed.size() && handed[k].first == j; ++k) out[count++] = handed[k].second;
-      list_.first_[j] = out;
-      list_.count_[j] = static_cast<std::uint32_t>(count);
-      at += count;
-    }
-    list_.entries_ = entries + handed.size();
+    list_.entries_ = entries + handed;
     list_.box_ = box;
     if (lonely < n) require_neighbours(p);  // (it may have received pairs since)
   }
@@ -1022,7 +1016,7 @@ class NeighbourSearch {
   bool any_wrapped_ = false;
   LocalMotion<D> motion_;
   long searches_ = 0, full_searches_ = 0, reuses_ = 0, particle_searches_ = 0;
-  std::vector<std::pair<std::uint32_t, Neighbour>> handed_;  // assemble_list: the one-sided pairs
+  std::vector<std::size_t> received_;  // assemble_list: one-sided pairs per receiving particle
   std::vector<Neighbour> side_;  // the pairs of particles that receive one-sided ones
   // Neighbour-number rule: the count a lattice shell forced on each particle (-1: none), and
   // the rule it was forced under.

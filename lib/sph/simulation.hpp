@@ -124,30 +124,49 @@ class Simulation {
   /// The time step allowed by every criterion now (without the output-time clamp).
   TimestepLimit allowed_timestep() const {
     const auto& p = particles_;
-    TimestepLimit best{"none", 0, std::numeric_limits<double>::infinity()};
-    for (std::size_t i = 0; i < p.size(); ++i) {
-      const double h = p.smoothing_length[i];
-      double signal = p.sound_speed[i] + viscosity_.signal_term(p.sound_speed[i], scratch_.max_mu[i]);
-      if (settings_.timestep_rule == Settings::TimestepRule::selhammar_eq7) signal += p.velocity[i].norm();
-      if (signal > 0) {
-        const double dt = settings_.courant * h / signal;
-        if (dt < best.dt) best = {"Courant (eq 7)", i, dt};
-      }
-      const double a = p.acceleration[i].norm();
-      if (a > 0) {
-        const double dt = settings_.courant * std::sqrt(h / a);
-        if (dt < best.dt) best = {"acceleration", i, dt};
-      }
-      // Cooling: an explicit step must not remove more than a fraction of u (without it, an
-      // inviscid collision can drive u negative in one step; chapter 3).
-      if constexpr (evolve_energy) {
-        if (p.energy_rate[i] < 0 && p.internal_energy[i] > 0) {
-          const double dt = settings_.courant * p.internal_energy[i] / -p.energy_rate[i];
-          if (dt < best.dt) best = {"cooling", i, dt};
+    const std::size_t n = p.size();
+    // Each chunk of particles finds its smallest step, then the chunks are compared in order
+    // (a tie goes to the lower index): the same answer for any number of threads.
+    constexpr std::size_t chunk = 4096;
+    constexpr const char* criteria[] = {"none", "Courant (eq 7)", "acceleration", "cooling"};
+    struct Best {
+      double dt = std::numeric_limits<double>::infinity();
+      std::size_t particle = 0;
+      int criterion = 0;
+    };
+    std::vector<Best> best((n + chunk - 1) / chunk);
+#pragma omp parallel for schedule(static) if (n >= parallel_threshold)
+    for (std::size_t c = 0; c < best.size(); ++c) {
+      Best b;
+      for (std::size_t i = c * chunk; i < std::min(n, (c + 1) * chunk); ++i) {
+        const double h = p.smoothing_length[i];
+        double signal = p.sound_speed[i] + viscosity_.signal_term(p.sound_speed[i], scratch_.max_mu[i]);
+        if (settings_.timestep_rule == Settings::TimestepRule::selhammar_eq7) signal += p.velocity[i].norm();
+        if (signal > 0) {
+          const double dt = settings_.courant * h / signal;
+          if (dt < b.dt) b = {dt, i, 1};
+        }
+        const double a = p.acceleration[i].norm();
+        if (a > 0) {
+          const double dt = settings_.courant * std::sqrt(h / a);
+          if (dt < b.dt) b = {dt, i, 2};
+        }
+        // Cooling: an explicit step must not remove more than a fraction of u (without it, an
+        // inviscid collision can drive u negative in one step; chapter 3).
+        if constexpr (evolve_energy) {
+          if (p.energy_rate[i] < 0 && p.internal_energy[i] > 0) {
+            const double dt = settings_.courant * p.internal_energy[i] / -p.energy_rate[i];
+            if (dt < b.dt) b = {dt, i, 3};
+          }
         }
       }
+      best[c] = b;
     }
-    return best;
+    Best overall;
+    for (const Best& b : best) {
+      if (b.dt < overall.dt) overall = b;
+    }
+    return {criteria[overall.criterion], overall.particle, overall.dt};
   }
 
   /// One kick-drift-kick step of at most dt_max; returns the step taken.
