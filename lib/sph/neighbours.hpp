@@ -26,6 +26,11 @@
 ///    number).
 ///
 /// "Neighbours" never include the particle itself (its own periodic images do count).
+///
+/// **From step to step** a particle keeps its candidates (every particle within a margin
+/// beyond 2h, found by the grid) for as long as its neighbourhood has moved little relative to
+/// it; only the particles where the flow shears or compresses are searched again.  See
+/// try_reuse below and LocalMotion (local_motion.hpp); docs/design.md has the measurements.
 
 #include "sph/box.hpp"
 #include "sph/cell_grid.hpp"
