@@ -67,7 +67,9 @@ namespace detail {
 
 /// Append to `out` (with the distances to `out_r2`) the entries k < n of (index, image, r2)
 /// with r2[k] < limit2, in order, and return how many.  When `wrapped` is given, each image is
-/// translated to image - own + wrapped[index] (see NeighbourSearch::current_image).  `out`
+/// translated to image - own + wrapped[index]: from the frame of the unwrapped positions, in
+/// which the search keeps candidates, to the frame of the stored ones (own = wrapped[i] for the
+/// particle whose pairs these are; see NeighbourSearch::try_reuse).  `out`
 /// and `out_r2` must have room for n entries: entries past the kept ones may be overwritten.
 ///
 /// The plain loop writes every entry and advances the end past the kept ones only (no
@@ -277,12 +279,6 @@ class NeighbourSearch {
   long full_searches() const { return full_searches_; }
   long reuses() const { return reuses_; }
   long particle_searches() const { return particle_searches_; }
-  /// The candidates all particles hold now (each is within its particle's reach).
-  std::size_t candidates() const {
-    std::size_t total = 0;
-    for (std::size_t i = 0; i < first_.size(); ++i) total += last_[i] - first_[i];
-    return total;
-  }
 
  private:
   // The full search: grid, candidates within (1 + search_margin) 2h of every particle, h by the
@@ -351,9 +347,7 @@ class NeighbourSearch {
 
   // Keep the pairs within 2 max(h_i, h_j) and write the list.
   void finish_list(const Particles<D>& p, const Box<D>& box, Kept kept) {
-    std::array<const double*, D> unwrapped_axes;
-    for (int a = 0; a < D; ++a) unwrapped_axes[a] = unwrapped_[a].data();
-    const PositionView<D> unwrapped = PositionView<D>::of(unwrapped_axes, built_box_);
+    const PositionView<D> unwrapped = unwrapped_view();
 #pragma omp parallel for schedule(static, 1) num_threads(static_cast<int>(blocks_.size())) if (blocks_.size() > 1)
     for (std::size_t t = 0; t < blocks_.size(); ++t) {
       Block& block = blocks_[t];
@@ -554,9 +548,7 @@ class NeighbourSearch {
 #pragma omp parallel for schedule(static) if (n >= parallel_threshold)
     for (std::size_t i = 0; i < n; ++i) covered_[i] = std::min(reach_[i], cell) - motion_.bound(i);
     // Settle every particle from its candidates; flag the ones to search again.
-    std::array<const double*, D> unwrapped_axes;
-    for (int a = 0; a < D; ++a) unwrapped_axes[a] = unwrapped_[a].data();
-    const PositionView<D> unwrapped = PositionView<D>::of(unwrapped_axes, built_box_);
+    const PositionView<D> unwrapped = unwrapped_view();
     search_again_.resize(n);
     int failed = 0;
 #pragma omp parallel for schedule(static, 1) num_threads(static_cast<int>(blocks_.size())) reduction(| : failed) if (blocks_.size() > 1)
@@ -632,6 +624,13 @@ class NeighbourSearch {
     return true;
   }
 
+  // The unwrapped positions, in whose frame the candidates' images hold.
+  PositionView<D> unwrapped_view() const {
+    std::array<const double*, D> axes;
+    for (int a = 0; a < D; ++a) axes[a] = unwrapped_[a].data();
+    return PositionView<D>::of(axes, built_box_);
+  }
+
   // Particle i's candidates with their present distances (in the frame of the unwrapped positions).
   CandidateSpan refreshed(Block& block, std::size_t i, const PositionView<D>& unwrapped) const {
     const CandidateSpan found = block.span(first_[i], last_[i]);
@@ -643,11 +642,6 @@ class NeighbourSearch {
 
   static bool same_box(const Box<D>& a, const Box<D>& b) {
     return a.lower == b.lower && a.upper == b.upper && a.periodic == b.periodic;
-  }
-
-  // The image of candidate j of i in the frame of the stored (wrapped) positions.
-  Image current_image(Image built, std::size_t i, std::size_t j) const {
-    return add_images(subtract_images(built, wrapped_[i]), wrapped_[j]);
   }
 
   // Search the grid for the flagged particles of one block: h by the rule, the candidates
@@ -684,7 +678,8 @@ class NeighbourSearch {
   }
 
   // The grid reports images in the frame of the stored (wrapped) positions; translate those of
-  // particle i's candidates to the frame of the unwrapped ones (the inverse of current_image).
+  // particle i's candidates to the frame of the unwrapped ones (the inverse of the translation
+  // in detail::keep_closer).
   void to_unwrapped_frame(Candidates& found, std::size_t i) const {
     for (std::size_t k = 0; k < found.size(); ++k)
       found.image[k] = subtract_images(add_images(found.image[k], wrapped_[i]), wrapped_[found.index[k]]);

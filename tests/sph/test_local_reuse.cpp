@@ -1,6 +1,7 @@
 // The pieces that let a neighbour search keep most particles' candidates from step to step:
 // the packed-image arithmetic, the local motion bound, the SIMD compaction of kept pairs, and
 // the search itself when part of the gas moves and part rests (against brute force).
+#include "brute_force_pairs.hpp"
 #include "sph/local_motion.hpp"
 #include "sph/neighbours.hpp"
 
@@ -12,50 +13,8 @@
 #include <tuple>
 #include <vector>
 
-namespace {
-
-using PairSet = std::set<std::tuple<std::size_t, std::uint32_t, sph::Image>>;
-
-// Every (i, j, image) with |x_i - x_j - image offset| < 2 max(h_i, h_j) (all images that reach).
-template <int D>
-PairSet brute_force(const sph::Particles<D>& p, const sph::Box<D>& box) {
-  PairSet pairs;
-  const double hmax = *std::max_element(p.smoothing_length.begin(), p.smoothing_length.end());
-  std::array<int, D> reach{};
-  for (int a = 0; a < D; ++a) reach[a] = box.periodic[a] ? static_cast<int>(std::ceil(4 * hmax / box.length(a))) + 1 : 0;
-  for (std::size_t i = 0; i < p.size(); ++i) {
-    for (std::size_t j = 0; j < p.size(); ++j) {
-      std::array<int, D> k{};
-      for (int a = 0; a < D; ++a) k[a] = -reach[a];
-      while (true) {
-        sph::Vec<D> offset = sph::Vec<D>::Zero();
-        for (int a = 0; a < D; ++a) offset[a] = k[a] * (box.periodic[a] ? box.length(a) : 0.0);
-        const sph::Image image = sph::pack_image<D>(k);
-        const double r = (p.position[i] - p.position[j] - offset).norm();
-        if (!(i == j && image == 0) && r < 2.0 * std::max(p.smoothing_length[i], p.smoothing_length[j]))
-          pairs.insert({i, static_cast<std::uint32_t>(j), image});
-        int a = 0;
-        while (a < D && k[a] == reach[a]) {
-          k[a] = -reach[a];
-          ++a;
-        }
-        if (a == D) break;
-        ++k[a];
-      }
-    }
-  }
-  return pairs;
-}
-
-template <int D>
-PairSet listed(const sph::NeighbourSearch<D>& search, std::size_t n) {
-  PairSet pairs;
-  for (std::size_t i = 0; i < n; ++i)
-    for (const auto& nb : search.list().of(i)) pairs.insert({i, nb.index, nb.image});
-  return pairs;
-}
-
-}  // namespace
+using test::brute_force;
+using test::listed;
 
 TEST_CASE("packed images add and subtract axis by axis, negative shifts included", "[neighbours]") {
   long wrong = 0;
@@ -166,7 +125,7 @@ TEST_CASE("a search that keeps the candidates of resting gas and searches the mo
         x = box.wrap(x + sph::Vec<3>(0.0, 0.006 + 0.01 * (x[0] - 0.5), -0.004) + 0.001 * jitter);
       }
       search.update(p, box, rule);
-      REQUIRE(listed(search, p.size()) == brute_force(p, box));
+      REQUIRE(listed(search.list(), p.size()) == brute_force(p, box));
     }
     INFO("updates that searched " << search.searches() << ", full " << search.full_searches() << ", reused "
                                   << search.reuses() << ", particle searches " << search.particle_searches());

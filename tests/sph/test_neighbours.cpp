@@ -1,6 +1,7 @@
 // The neighbour list against a brute-force search (after SWIFT's brute-force checks): the same
 // pairs, periodic images included, on random sets in 1D/2D/3D, periodic and open, with a 100x
 // spread of smoothing lengths and periodic boxes narrower than the kernel support.
+#include "brute_force_pairs.hpp"
 #include "sph/neighbours.hpp"
 
 #include <catch2/catch.hpp>
@@ -12,35 +13,7 @@
 
 namespace {
 
-// Every (i, j, image) with |x_i - x_j - image offset| < 2 max(h_i, h_j), found by trying every
-// image shift that can possibly reach.
-template <int D>
-std::set<std::tuple<std::size_t, std::uint32_t, sph::Image>> brute_force(const sph::Particles<D>& p,
-                                                                        const sph::Box<D>& box) {
-  std::set<std::tuple<std::size_t, std::uint32_t, sph::Image>> pairs;
-  const double hmax = *std::max_element(p.smoothing_length.begin(), p.smoothing_length.end());
-  std::array<int, D> reach{};
-  for (int a = 0; a < D; ++a) reach[a] = box.periodic[a] ? static_cast<int>(std::ceil(4 * hmax / box.length(a))) + 1 : 0;
-  for (std::size_t i = 0; i < p.size(); ++i) {
-    for (std::size_t j = 0; j < p.size(); ++j) {
-      std::array<int, D> k{};
-      for (int a = 0; a < D; ++a) k[a] = -reach[a];
-      while (true) {
-        sph::Vec<D> offset = sph::Vec<D>::Zero();
-        for (int a = 0; a < D; ++a) offset[a] = k[a] * (box.periodic[a] ? box.length(a) : 0.0);
-        const sph::Image image = sph::pack_image<D>(k);
-        const double r = (p.position[i] - p.position[j] - offset).norm();
-        const double reach_ij = 2.0 * std::max(p.smoothing_length[i], p.smoothing_length[j]);
-        if (!(i == j && image == 0) && r < reach_ij) pairs.insert({i, static_cast<std::uint32_t>(j), image});
-        int a = 0;
-        while (a < D && k[a] == reach[a]) { k[a] = -reach[a]; ++a; }
-        if (a == D) break;
-        ++k[a];
-      }
-    }
-  }
-  return pairs;
-}
+using test::brute_force;
 
 template <int D>
 void compare_with_brute_force(const sph::Box<D>& box, std::size_t n, double h_spread, unsigned seed,
@@ -120,10 +93,7 @@ TEST_CASE("reused candidates give the brute-force list as particles move and wra
         x = tube.wrap(x + sph::Vec<3>(0.013, 0.007, -0.011) + 0.004 * jitter);
       }
       search.update(p, tube, rule);
-      std::set<std::tuple<std::size_t, std::uint32_t, sph::Image>> found;
-      for (std::size_t i = 0; i < p.size(); ++i)
-        for (const auto& nb : search.list().of(i)) found.insert({i, nb.index, nb.image});
-      REQUIRE(found == brute_force(p, tube));
+      REQUIRE(test::listed(search.list(), p.size()) == brute_force(p, tube));
     }
     INFO("searches " << search.searches() << ", reuses " << search.reuses());
     CHECK(search.reuses() > 0);
