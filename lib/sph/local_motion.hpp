@@ -62,7 +62,13 @@ class LocalMotion {
         hi_[a][cell] = std::max(hi_[a][cell], d[a][i]);
       }
     }
-    for (int axis = 0; axis < D; ++axis) widen_along(axis, box.periodic[axis]);
+    for (int a = 0; a < D; ++a) periodic_[a] = box.periodic[a];
+    for (int axis = 0; axis < D; ++axis) {
+      for (int a = 0; a < D; ++a) {
+        widen_along(lo_[a], axis, [](double u, double v) { return std::min(u, v); });
+        widen_along(hi_[a], axis, [](double u, double v) { return std::max(u, v); });
+      }
+    }
     bound_.resize(n);
 #pragma omp parallel for schedule(static) if (n >= parallel_threshold)
     for (std::size_t i = 0; i < n; ++i) {
@@ -87,6 +93,19 @@ class LocalMotion {
   /// An upper bound of |d_i - d_j| over every particle j (or periodic image of j) now closer
   /// than cell_size() to particle i.
   double bound(std::size_t i) const { return bound_[i]; }
+
+  /// For every particle i, the smallest value[j] over the particles j (and periodic images)
+  /// closer than cell_size() to it, found in the same cells as the bound (for the positions of
+  /// the last build).
+  void neighbourhood_min(const double* value, std::vector<double>& out) const {
+    std::vector<double> least(total_cells(), std::numeric_limits<double>::infinity());
+    const std::size_t n = cell_of_.size();
+    for (std::size_t i = 0; i < n; ++i) least[cell_of_[i]] = std::min(least[cell_of_[i]], value[i]);
+    for (int axis = 0; axis < D; ++axis) widen_along(least, axis, [](double u, double v) { return std::min(u, v); });
+    out.resize(n);
+#pragma omp parallel for schedule(static) if (n >= parallel_threshold)
+    for (std::size_t i = 0; i < n; ++i) out[i] = least[cell_of_[i]];
+  }
 
  private:
   std::size_t total_cells() const {
@@ -120,42 +139,38 @@ class LocalMotion {
     throw Error("local motion: could not choose a cell size (particles spread over too large a range)");
   }
 
-  // Widen every cell's box over its two neighbours along `axis` (periodically wrapped or cut at
-  // the ends); done along each axis in turn, this covers the 3^D neighbourhood.
-  void widen_along(int axis, bool periodic) {
+  // Replace every cell's value by `pick` (the min or the max) of it and its two neighbours
+  // along `axis` (periodically wrapped, or cut at the ends of an open axis); done along each
+  // axis in turn, this covers the 3^D neighbourhood.
+  template <class Pick>
+  void widen_along(std::vector<double>& value, int axis, Pick pick) const {
     const int n = cells_[axis];
     if (n == 1) return;
     std::size_t stride = 1;
     for (int a = 0; a < axis; ++a) stride *= static_cast<std::size_t>(cells_[a]);
     const std::size_t cells = total_cells();
     const std::size_t line = stride * static_cast<std::size_t>(n);
-    std::vector<double> lo(static_cast<std::size_t>(n)), hi(static_cast<std::size_t>(n));
-    for (int a = 0; a < D; ++a) {
-      for (std::size_t outer = 0; outer < cells; outer += line) {
-        for (std::size_t inner = 0; inner < stride; ++inner) {
-          const std::size_t base = outer + inner;
-          for (int k = 0; k < n; ++k) {
-            lo[static_cast<std::size_t>(k)] = lo_[a][base + static_cast<std::size_t>(k) * stride];
-            hi[static_cast<std::size_t>(k)] = hi_[a][base + static_cast<std::size_t>(k) * stride];
+    std::vector<double> row(static_cast<std::size_t>(n));
+    for (std::size_t outer = 0; outer < cells; outer += line) {
+      for (std::size_t inner = 0; inner < stride; ++inner) {
+        const std::size_t base = outer + inner;
+        for (int k = 0; k < n; ++k) row[static_cast<std::size_t>(k)] = value[base + static_cast<std::size_t>(k) * stride];
+        for (int k = 0; k < n; ++k) {
+          double v = row[static_cast<std::size_t>(k)];
+          for (int s : {-1, 1}) {
+            int m = k + s;
+            if (periodic_[axis]) m = (m + n) % n;
+            if (m < 0 || m >= n) continue;
+            v = pick(v, row[static_cast<std::size_t>(m)]);
           }
-          for (int k = 0; k < n; ++k) {
-            double l = lo[static_cast<std::size_t>(k)], h = hi[static_cast<std::size_t>(k)];
-            for (int s : {-1, 1}) {
-              int m = k + s;
-              if (periodic) m = (m + n) % n;
-              if (m < 0 || m >= n) continue;
-              l = std::min(l, lo[static_cast<std::size_t>(m)]);
-              h = std::max(h, hi[static_cast<std::size_t>(m)]);
-            }
-            lo_[a][base + static_cast<std::size_t>(k) * stride] = l;
-            hi_[a][base + static_cast<std::size_t>(k) * stride] = h;
-          }
+          value[base + static_cast<std::size_t>(k) * stride] = v;
         }
       }
     }
   }
 
   std::array<int, D> cells_{};
+  std::array<bool, D> periodic_{};
   Vec<D> origin_ = Vec<D>::Zero();
   Vec<D> size_ = Vec<D>::Ones();
   std::array<std::vector<double>, D> lo_, hi_;  // per cell and axis: the displacements' range

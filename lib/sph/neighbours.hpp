@@ -65,12 +65,12 @@ struct Neighbour {
 
 namespace detail {
 
-/// Append to `out` (with the distances to `out_r2`) the entries k < n of (index, image, r2)
-/// with r2[k] < limit2, in order, and return how many.  When `wrapped` is given, each image is
+/// Append to `out` the entries k < n of (index, image) with r2[k] < limit2, in order, and
+/// return how many.  When `wrapped` is given, each image is
 /// translated to image - own + wrapped[index]: from the frame of the unwrapped positions, in
 /// which the search keeps candidates, to the frame of the stored ones (own = wrapped[i] for the
-/// particle whose pairs these are; see NeighbourSearch::try_reuse).  `out`
-/// and `out_r2` must have room for n entries: entries past the kept ones may be overwritten.
+/// particle whose pairs these are; see NeighbourSearch::try_reuse).  `out` must have room for
+/// n entries: entries past the kept ones may be overwritten.
 ///
 /// The plain loop writes every entry and advances the end past the kept ones only (no
 /// branch to mispredict), but still moves one entry per iteration.  With AVX-512 the entries
@@ -79,7 +79,7 @@ namespace detail {
 /// form is microcoded and slow).  `portable` forces the plain loop, so tests can compare both.
 template <bool portable = false>
 inline std::size_t keep_closer(const std::uint32_t* index, const Image* image, const double* r2, std::size_t n,
-                               double limit2, const Image* wrapped, Image own, Neighbour* out, double* out_r2) {
+                               double limit2, const Image* wrapped, Image own, Neighbour* out) {
   static_assert(sizeof(Neighbour) == 8, "a Neighbour must pack into one 64-bit lane");
   std::size_t end = 0, k = 0;
 #if defined(__AVX512F__) && defined(__AVX512VL__)
@@ -105,7 +105,6 @@ inline std::size_t keep_closer(const std::uint32_t* index, const Image* image, c
       }
       const __m512i pair = _mm512_or_si512(_mm512_cvtepu32_epi64(j), _mm512_slli_epi64(_mm512_cvtepu32_epi64(img), 32));
       _mm512_storeu_si512(out + end, _mm512_maskz_compress_epi64(kept, pair));
-      _mm512_storeu_pd(out_r2 + end, _mm512_maskz_compress_pd(kept, d));
       end += static_cast<std::size_t>(__builtin_popcount(kept));
     }
   }
@@ -114,7 +113,6 @@ inline std::size_t keep_closer(const std::uint32_t* index, const Image* image, c
   for (; k < n; ++k) {
     const Image img = wrapped ? add_images(subtract_images(image[k], own), wrapped[index[k]]) : image[k];
     out[end] = {index[k], img};
-    out_r2[end] = r2[k];
     end += r2[k] < limit2;
   }
   return end;
@@ -297,6 +295,7 @@ class NeighbourSearch {
     first_.assign(n, 0);
     last_.assign(n, 0);
     reach_.assign(n, 0.0);
+    farthest2_.assign(n, 0.0);
     start_frame(p);
     built_box_ = box;
     built_mode_ = rule.mode;
@@ -345,8 +344,8 @@ class NeighbourSearch {
   // hand), or all but those of the particles searched again.
   enum class Kept { none, all, all_but_searched };
 
-  // Keep the pairs within 2 max(h_i, h_j) and write the list.
-  void finish_list(const Particles<D>& p, const Box<D>& box, Kept kept) {
+  // Keep the pairs within 2 max(h_i, h_j) and write the list.  `h_floor`: see find_reverse.
+  void finish_list(const Particles<D>& p, const Box<D>& box, Kept kept, const std::vector<double>* h_floor = nullptr) {
     const PositionView<D> unwrapped = unwrapped_view();
 #pragma omp parallel for schedule(static, 1) num_threads(static_cast<int>(blocks_.size())) if (blocks_.size() > 1)
     for (std::size_t t = 0; t < blocks_.size(); ++t) {
@@ -359,7 +358,7 @@ class NeighbourSearch {
           if (kept == Kept::none || search_again_[i]) keep_own(block, i, refreshed(block, i, unwrapped), p.smoothing_length[i]);
         }
       }
-      find_reverse(p, block);
+      find_reverse(p, block, h_floor);
     }
     assemble_list(p, box);
   }
@@ -420,14 +419,14 @@ class NeighbourSearch {
   static CandidateSpan span_of(Candidates& c, std::size_t first, std::size_t last) {
     return {c.index.data() + first, c.image.data() + first, c.r2.data() + first, last - first};
   }
-  // The pairs (r_ij < 2h_i) of a range of particles, with their squared distances: those of the
-  // k-th particle are entries first[k] .. first[k] + count[k].  Written particle after
-  // particle; the arrays only grow, `used` entries are in use.
+  // The pairs (r_ij < 2h_i) of a range of particles: those of the k-th particle are entries
+  // first[k] .. first[k] + count[k].  Written particle after particle; the array only grows,
+  // `used` entries are in use.  (Their distances are not kept: writing and reading them back
+  // cost more memory traffic than measuring the few that are needed again, find_reverse.)
   struct KeptPairs {
     std::vector<std::size_t> first;
     std::vector<std::uint32_t> count;
     std::vector<Neighbour> pairs;
-    std::vector<double> r2;
     std::size_t used = 0;
     void clear(std::size_t particles) {
       first.assign(particles, 0);
@@ -437,21 +436,19 @@ class NeighbourSearch {
     void reserve_more(std::size_t more) {
       if (used + more <= pairs.size()) return;
       pairs.resize(std::max(used + more, 2 * pairs.size()));
-      r2.resize(pairs.size());
     }
   };
   // The work of one thread: a contiguous range of particles, its candidates and the pairs it
   // keeps.  Particle i's candidates are entries first_[i]..last_[i] of `candidates`; a particle
   // searched again appends its new ones, and the block is compacted when more than half its
-  // entries are stale.  The kept pairs (r_ij < 2h_i) go to `kept`, particle after particle,
-  // with their squared distances; one-sided pairs (r_ij < 2h_i but >= 2h_j) are recorded in
-  // `reverse` so that j gets them too.
+  // entries are stale.  The kept pairs (r_ij < 2h_i) go to `kept`, particle after particle;
+  // one-sided pairs (r_ij < 2h_i but >= 2h_j) are recorded in `reverse` so that j gets them too.
   struct Block {
     std::size_t begin = 0, end = 0;
     StoredCandidates candidates, spare;  // (spare: the buffer a compaction copies into)
     std::size_t live = 0;                // entries some particle still refers to
     Candidates found;                    // the candidates of the particle being searched
-    std::vector<double> r2;              // the distances of the particle being settled
+    std::vector<double> r2;              // the distances of the particle being settled (or checked)
     KeptPairs kept;
     std::vector<std::pair<std::uint32_t, Neighbour>> reverse;  // (j, entry for j)
     // The candidates of particle i with room for their distances.
@@ -573,7 +570,9 @@ class NeighbourSearch {
     } else {
       ++reuses_;
     }
-    finish_list(p, box, failed ? Kept::all_but_searched : Kept::all);
+    // (every h is final now: the smallest near each particle tells which may hand pairs over)
+    motion_.neighbourhood_min(p.smoothing_length.data(), h_floor_);
+    finish_list(p, box, failed ? Kept::all_but_searched : Kept::all, &h_floor_);
     return true;
   }
 
@@ -725,7 +724,7 @@ class NeighbourSearch {
         return true;
       }();
       if (settled) {
-        p.neighbour_count[i] = count_within(found, K::support * h);
+        p.neighbour_count[i] = count_within(found, h);
         // A widened search (common on a lattice, where the next shell may lie beyond the first
         // radius) keeps only the candidates within the margin of the final h: every later step
         // refreshes each one.
@@ -762,8 +761,12 @@ class NeighbourSearch {
     c.count = end;
   }
 
-  static int count_within(const CandidateSpan& found, double radius) {
-    const double r2max = radius * radius;
+  // (2h)^2, written once: the count, the kept pairs and the one-sided test must agree to the
+  // last bit on which side of 2h a distance lies, and it grows with h in floating point too.
+  static double support2(double h) { return (K::support * h) * (K::support * h); }
+
+  static int count_within(const CandidateSpan& found, double h) {
+    const double r2max = support2(h);
     const double* r2 = found.r2;  // a local pointer: the loads are then contiguous, not gathered
     const std::size_t size = found.size;
     int count = 0;
@@ -777,7 +780,7 @@ class NeighbourSearch {
   // candidate.  False when the candidates do not reach that far (the caller widens the search).
   static bool settle_by_count(const SmoothingLengthRule& rule, double radius, const CandidateSpan& found, double& h,
                               int& shell) {
-    const int count = count_within(found, K::support * h);
+    const int count = count_within(found, h);
     const bool accepted = std::abs(count - rule.neighbours) <= rule.tolerance || count == shell;
     if (accepted && K::support * h <= radius) return true;
     const auto n = static_cast<std::size_t>(std::llround(rule.neighbours));
@@ -786,7 +789,7 @@ class NeighbourSearch {
     // both are found among the distances on one side of 2h only (typically a third of the
     // candidates): select from a copy of that side (the candidates keep their order).
     thread_local std::vector<double> side;
-    const double reach2 = K::support * h * K::support * h;
+    const double reach2 = support2(h);
     const auto inside = static_cast<std::size_t>(count);
     double rn2, rn12;  // the two squared distances
     if (inside == n) {
@@ -893,15 +896,21 @@ class NeighbourSearch {
                 std::to_string(rule.max_iterations) + " iterations (last h = " + std::to_string(h_new) + ")");
   }
 
-  // Keep particle i's pairs with r_ij < 2h_i (appended to `kept`, with their distances,
-  // images in the frame of the stored positions); returns how many.
-  int keep_own(Block& block, std::size_t i, const CandidateSpan& found, double h) const {
+  // Keep particle i's pairs with r_ij < 2h_i (appended to `kept`, images in the frame of the
+  // stored positions); returns how many.
+  int keep_own(Block& block, std::size_t i, const CandidateSpan& found, double h) {
     KeptPairs& kept = block.kept;
     kept.reserve_more(found.size);
-    const double reach2 = K::support * h * K::support * h;
+    const double limit2 = support2(h);
     const std::size_t count =
-        detail::keep_closer(found.index, found.image, found.r2, found.size, reach2, any_wrapped_ ? wrapped_.data() : nullptr,
-                            wrapped_[i], kept.pairs.data() + kept.used, kept.r2.data() + kept.used);
+        detail::keep_closer(found.index, found.image, found.r2, found.size, limit2, any_wrapped_ ? wrapped_.data() : nullptr,
+                            wrapped_[i], kept.pairs.data() + kept.used);
+    double farthest2 = 0;
+    const double* r2 = found.r2;  // a local pointer: the loads are then contiguous, not gathered
+    const std::size_t size = found.size;
+#pragma omp simd reduction(max : farthest2)
+    for (std::size_t k = 0; k < size; ++k) farthest2 = std::max(farthest2, r2[k] < limit2 ? r2[k] : 0.0);
+    farthest2_[i] = farthest2;
     kept.first[i - block.begin] = kept.used;
     kept.count[i - block.begin] = static_cast<std::uint32_t>(count);
     kept.used += count;
@@ -909,25 +918,41 @@ class NeighbourSearch {
   }
 
   // With every h final: the kept pairs (i, j) with r_ij >= 2h_j, which j's own candidates do
-  // not give it, are handed to j.  Few particles have any (a vectorised count finds them).
-  void find_reverse(const Particles<D>& p, Block& block) const {
+  // not give it, are handed to j.
+  //
+  // A particle whose farthest kept pair is closer than 2h_j for the smallest h_j near it has
+  // none; in gas at rest or in uniform flow that is nearly every particle.  When `h_floor` is
+  // given (the smallest h near each particle, LocalMotion::neighbourhood_min, valid for the
+  // particles not searched again), those are passed over without reading their pairs.  The rest
+  // measure their pairs' distances again: between the same unwrapped positions, with the same
+  // images (translated back from the frame of the stored positions), by the same arithmetic as
+  // the refresh, so that each distance is the one that kept the pair, to the bit.  Few
+  // particles have any one-sided pair (a vectorised count finds them).
+  void find_reverse(const Particles<D>& p, Block& block, const std::vector<double>* h_floor) {
     block.reverse.clear();
     const double* h = p.smoothing_length.data();
     const Neighbour* kept = block.kept.pairs.data();
-    const double* r2 = block.kept.r2.data();
+    const PositionView<D> u = unwrapped_view();
+    const Image* wrapped = any_wrapped_ ? wrapped_.data() : nullptr;
     for (std::size_t i = block.begin; i < block.end; ++i) {
-      const std::size_t first = block.kept.first[i - block.begin], last = first + block.kept.count[i - block.begin];
+      if (h_floor && !search_again_[i] && farthest2_[i] < support2((*h_floor)[i])) continue;
+      const std::size_t first = block.kept.first[i - block.begin], count = block.kept.count[i - block.begin];
+      const Neighbour* pairs = kept + first;
+      if (block.r2.size() < count) block.r2.resize(2 * count);
+      double* r2 = block.r2.data();
+      const Image own = wrapped_[i];
+#pragma omp simd simdlen(8) if(simd : D > 1)
+      for (std::size_t e = 0; e < count; ++e) {
+        const Image image = wrapped ? subtract_images(add_images(pairs[e].image, own), wrapped[pairs[e].index]) : pairs[e].image;
+        r2[e] = u.distance2(i, {pairs[e].index, image});
+      }
       int one_sided = 0;
 #pragma omp simd reduction(+ : one_sided)
-      for (std::size_t e = first; e < last; ++e) {
-        const double reach_j = K::support * h[kept[e].index];
-        one_sided += r2[e] >= reach_j * reach_j;
-      }
+      for (std::size_t e = 0; e < count; ++e) one_sided += r2[e] >= support2(h[pairs[e].index]);
       if (one_sided == 0) continue;
-      for (std::size_t e = first; e < last; ++e) {
-        const double reach_j = K::support * h[kept[e].index];
-        if (r2[e] >= reach_j * reach_j)
-          block.reverse.push_back({kept[e].index, {static_cast<std::uint32_t>(i), mirror_image<D>(kept[e].image)}});
+      for (std::size_t e = 0; e < count; ++e) {
+        if (r2[e] >= support2(h[pairs[e].index]))
+          block.reverse.push_back({pairs[e].index, {static_cast<std::uint32_t>(i), mirror_image<D>(pairs[e].image)}});
       }
     }
   }
@@ -1015,6 +1040,8 @@ class NeighbourSearch {
   std::vector<Image> wrapped_;  // periods between unwrapped and stored position, packed like an image
   bool any_wrapped_ = false;
   LocalMotion<D> motion_;
+  std::vector<double> h_floor_;    // the smallest h near each particle (find_reverse)
+  std::vector<double> farthest2_;  // the largest r_ij^2 among each particle's kept pairs
   long searches_ = 0, full_searches_ = 0, reuses_ = 0, particle_searches_ = 0;
   std::vector<std::size_t> received_;  // assemble_list: one-sided pairs per receiving particle
   std::vector<Neighbour> side_;  // the pairs of particles that receive one-sided ones
