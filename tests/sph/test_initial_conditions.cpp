@@ -152,6 +152,38 @@ TEST_CASE("cuts keep exactly the points inside", "[initial_conditions]") {
   CHECK(slab.size() == 40u * 40u * 10u);
 }
 
+TEST_CASE("ordering by cells keeps the points and puts them slab after slab", "[initial_conditions]") {
+  auto points = sph::lattice<3>(sph::LatticeType::cubic, sph::Vec<3>(-1, 0, 0), sph::Vec<3>(1, 0.2, 0.2), 0.02);
+  sph::disturb<3>(points, 0.004, 9);
+  auto ordered = points;
+  sph::order_by_cells<3>(ordered, 0.05);
+  REQUIRE(ordered.size() == points.size());
+  // The same points (as a multiset)...
+  auto less = [](const sph::Vec<3>& a, const sph::Vec<3>& b) {
+    return std::lexicographical_compare(a.data(), a.data() + 3, b.data(), b.data() + 3);
+  };
+  auto a = points, b = ordered;
+  std::sort(a.begin(), a.end(), less);
+  std::sort(b.begin(), b.end(), less);
+  CHECK(a == b);
+  // ...with x never falling back by more than a cell, and y by more than a cell only where x
+  // moves on to the next cell.
+  long backwards = 0;
+  double lowest_x = std::numeric_limits<double>::infinity();
+  for (const auto& x : points) lowest_x = std::min(lowest_x, x[0]);
+  for (std::size_t k = 1; k < ordered.size(); ++k) {
+    backwards += ordered[k][0] < ordered[k - 1][0] - 0.05;
+    const bool same_slab = std::floor((ordered[k][0] - lowest_x) / 0.05) == std::floor((ordered[k - 1][0] - lowest_x) / 0.05);
+    backwards += same_slab && ordered[k][1] < ordered[k - 1][1] - 0.05;
+  }
+  CHECK(backwards == 0);
+  // lattice() itself counts x fastest: it jumps back along x at every row.
+  long jumps = 0;
+  for (std::size_t k = 1; k < points.size(); ++k) jumps += points[k][0] < points[k - 1][0] - 0.05;
+  CHECK(jumps > 50);
+  CHECK_THROWS_WITH(sph::order_by_cells<3>(ordered, 0.0), Catch::Contains("cell size"));
+}
+
 TEST_CASE("disturbances stay within their amplitude and are reproducible", "[initial_conditions]") {
   const auto box = sph::Box<2>::periodic_box(Vec<2>::Zero(), Vec<2>::Ones());
   const auto lattice = sph::lattice<2>(LatticeType::cubic, Vec<2>::Zero(), Vec<2>::Ones(), 0.1);

@@ -132,6 +132,9 @@ ShockTube<D> shock_tube_lattices(const ShockTubeSetup& s) {
     settle_side<D>(left_points, Box<D>::periodic_box(lower, mid_high));
     settle_side<D>(right_points, Box<D>::periodic_box(mid_low, upper));
   }
+  // Along the tube, slab after slab (neighbours near each other in memory).
+  order_by_cells<D>(left_points, 2.0 * dx_left);
+  order_by_cells<D>(right_points, 2.0 * dx_right);
   double cell_volume = dx_left;
   for (int a = 1; a < D; ++a) cell_volume *= s.width / left_cells[a];
   const double mass = s.left.density * cell_volume;
