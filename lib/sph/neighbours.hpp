@@ -66,7 +66,7 @@ struct Neighbour {
 namespace detail {
 
 /// Append to `out` the entries k < n of (index, image) with r2[k] < limit2, in order, and
-/// return how many.  When `wrapped` is given, each image is
+/// return how many; `farthest2` gets the largest r2 among them (0 if none).  When `wrapped` is given, each image is
 /// translated to image - own + wrapped[index]: from the frame of the unwrapped positions, in
 /// which the search keeps candidates, to the frame of the stored ones (own = wrapped[i] for the
 /// particle whose pairs these are; see NeighbourSearch::try_reuse).  `out` must have room for
@@ -79,9 +79,10 @@ namespace detail {
 /// form is microcoded and slow).  `portable` forces the plain loop, so tests can compare both.
 template <bool portable = false>
 inline std::size_t keep_closer(const std::uint32_t* index, const Image* image, const double* r2, std::size_t n,
-                               double limit2, const Image* wrapped, Image own, Neighbour* out) {
+                               double limit2, const Image* wrapped, Image own, Neighbour* out, double& farthest2) {
   static_assert(sizeof(Neighbour) == 8, "a Neighbour must pack into one 64-bit lane");
   std::size_t end = 0, k = 0;
+  double farthest = 0;
 #if defined(__AVX512F__) && defined(__AVX512VL__)
 #pragma GCC diagnostic push
 #pragma GCC diagnostic ignored "-Wmaybe-uninitialized"  // (GCC 12, inside its own AVX-512 headers)
@@ -89,6 +90,7 @@ inline std::size_t keep_closer(const std::uint32_t* index, const Image* image, c
     const __m512d limit = _mm512_set1_pd(limit2);
     const __m256i low = _mm256_set1_epi32(0x7f7f7f7f), high = _mm256_set1_epi32(static_cast<int>(0x80808080u));
     const __m256i own_image = _mm256_set1_epi32(static_cast<int>(own));
+    __m512d far = _mm512_setzero_pd();
     for (; k + 8 <= n; k += 8) {
       const __m512d d = _mm512_loadu_pd(r2 + k);
       const __mmask8 kept = _mm512_cmp_pd_mask(d, limit, _CMP_LT_OQ);
@@ -105,16 +107,20 @@ inline std::size_t keep_closer(const std::uint32_t* index, const Image* image, c
       }
       const __m512i pair = _mm512_or_si512(_mm512_cvtepu32_epi64(j), _mm512_slli_epi64(_mm512_cvtepu32_epi64(img), 32));
       _mm512_storeu_si512(out + end, _mm512_maskz_compress_epi64(kept, pair));
+      far = _mm512_max_pd(far, _mm512_maskz_mov_pd(kept, d));
       end += static_cast<std::size_t>(__builtin_popcount(kept));
     }
+    farthest = _mm512_reduce_max_pd(far);
   }
 #pragma GCC diagnostic pop
 #endif
   for (; k < n; ++k) {
     const Image img = wrapped ? add_images(subtract_images(image[k], own), wrapped[index[k]]) : image[k];
     out[end] = {index[k], img};
+    farthest = std::max(farthest, r2[k] < limit2 ? r2[k] : 0.0);
     end += r2[k] < limit2;
   }
+  farthest2 = farthest;
   return end;
 }
 
@@ -284,11 +290,14 @@ class NeighbourSearch {
   void full_search(Particles<D>& p, const Box<D>& box, const SmoothingLengthRule& rule) {
     const std::size_t n = p.size();
     initial_guess(p, box, rule);
-    const std::size_t threads = n < parallel_threshold ? 1 : static_cast<std::size_t>(omp_get_max_threads());
-    blocks_.resize(threads);
-    for (std::size_t t = 0; t < threads; ++t) {
-      blocks_[t].begin = n * t / threads;
-      blocks_[t].end = n * (t + 1) / threads;
+    // Blocks of a few thousand particles, handed to the threads as they come free: the work is
+    // not even along the particles (the gas that moves needs more), and a fixed number of
+    // blocks, whatever the thread count, keeps every result the same for any thread count.
+    const std::size_t count = n < parallel_threshold ? 1 : std::clamp<std::size_t>(n / block_size, 1, 256);
+    blocks_.resize(count);
+    for (std::size_t t = 0; t < count; ++t) {
+      blocks_[t].begin = n * t / count;
+      blocks_[t].end = n * (t + 1) / count;
       blocks_[t].candidates.clear();
       blocks_[t].live = 0;
     }
@@ -325,7 +334,7 @@ class NeighbourSearch {
     grid_.build(p.position, box, cell_size(p.smoothing_length));
     std::string error;
     long searched = 0;
-#pragma omp parallel for schedule(static, 1) num_threads(static_cast<int>(blocks_.size())) reduction(+ : searched) if (blocks_.size() > 1)
+#pragma omp parallel for schedule(dynamic, 1) reduction(+ : searched) if (blocks_.size() > 1)
     for (std::size_t t = 0; t < blocks_.size(); ++t) {
       try {
         searched += search_block(p, rule, blocks_[t]);
@@ -347,7 +356,7 @@ class NeighbourSearch {
   // Keep the pairs within 2 max(h_i, h_j) and write the list.  `h_floor`: see find_reverse.
   void finish_list(const Particles<D>& p, const Box<D>& box, Kept kept, const std::vector<double>* h_floor = nullptr) {
     const PositionView<D> unwrapped = unwrapped_view();
-#pragma omp parallel for schedule(static, 1) num_threads(static_cast<int>(blocks_.size())) if (blocks_.size() > 1)
+#pragma omp parallel for schedule(dynamic, 1) if (blocks_.size() > 1)
     for (std::size_t t = 0; t < blocks_.size(); ++t) {
       Block& block = blocks_[t];
       if (kept == Kept::none) block.kept.clear(block.end - block.begin);
@@ -438,7 +447,7 @@ class NeighbourSearch {
       pairs.resize(std::max(used + more, 2 * pairs.size()));
     }
   };
-  // The work of one thread: a contiguous range of particles, its candidates and the pairs it
+  // A unit of work for one thread: a contiguous range of particles, its candidates and the pairs it
   // keeps.  Particle i's candidates are entries first_[i]..last_[i] of `candidates`; a particle
   // searched again appends its new ones, and the block is compacted when more than half its
   // entries are stale.  The kept pairs (r_ij < 2h_i) go to `kept`, particle after particle;
@@ -548,7 +557,7 @@ class NeighbourSearch {
     const PositionView<D> unwrapped = unwrapped_view();
     search_again_.resize(n);
     int failed = 0;
-#pragma omp parallel for schedule(static, 1) num_threads(static_cast<int>(blocks_.size())) reduction(| : failed) if (blocks_.size() > 1)
+#pragma omp parallel for schedule(dynamic, 1) reduction(| : failed) if (blocks_.size() > 1)
     for (std::size_t t = 0; t < blocks_.size(); ++t) {
       Block& block = blocks_[t];
       block.kept.clear(block.end - block.begin);
@@ -901,16 +910,9 @@ class NeighbourSearch {
   int keep_own(Block& block, std::size_t i, const CandidateSpan& found, double h) {
     KeptPairs& kept = block.kept;
     kept.reserve_more(found.size);
-    const double limit2 = support2(h);
     const std::size_t count =
-        detail::keep_closer(found.index, found.image, found.r2, found.size, limit2, any_wrapped_ ? wrapped_.data() : nullptr,
-                            wrapped_[i], kept.pairs.data() + kept.used);
-    double farthest2 = 0;
-    const double* r2 = found.r2;  // a local pointer: the loads are then contiguous, not gathered
-    const std::size_t size = found.size;
-#pragma omp simd reduction(max : farthest2)
-    for (std::size_t k = 0; k < size; ++k) farthest2 = std::max(farthest2, r2[k] < limit2 ? r2[k] : 0.0);
-    farthest2_[i] = farthest2;
+        detail::keep_closer(found.index, found.image, found.r2, found.size, support2(h), any_wrapped_ ? wrapped_.data() : nullptr,
+                            wrapped_[i], kept.pairs.data() + kept.used, farthest2_[i]);
     kept.first[i - block.begin] = kept.used;
     kept.count[i - block.begin] = static_cast<std::uint32_t>(count);
     kept.used += count;
@@ -976,7 +978,7 @@ class NeighbourSearch {
     list_.first_.resize(n);
     list_.count_.resize(n);
     std::size_t entries = 0, lonely = n;
-#pragma omp parallel for schedule(static, 1) num_threads(static_cast<int>(blocks_.size())) reduction(+ : entries) reduction(min : lonely) if (blocks_.size() > 1)
+#pragma omp parallel for schedule(dynamic, 1) reduction(+ : entries) reduction(min : lonely) if (blocks_.size() > 1)
     for (std::size_t t = 0; t < blocks_.size(); ++t) {
       const Block& b = blocks_[t];
       for (std::size_t i = b.begin; i < b.end; ++i) {
@@ -1020,6 +1022,7 @@ class NeighbourSearch {
     if (lonely < n) require_neighbours(p);  // (it may have received pairs since)
   }
 
+  static constexpr std::size_t block_size = 2048;  // particles per block (about)
   CellGrid<D> grid_;
   std::vector<Block> blocks_;
   NeighbourList<D> list_;

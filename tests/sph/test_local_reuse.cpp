@@ -103,12 +103,19 @@ TEST_CASE("the SIMD compaction of kept pairs equals the plain loop", "[neighbour
     for (const sph::Image* w : {static_cast<const sph::Image*>(nullptr), static_cast<const sph::Image*>(wrapped.data())}) {
       std::vector<sph::Neighbour> a(n + 8), b(n + 8);
       const sph::Image own = wrapped[17];
-      const std::size_t ka = sph::detail::keep_closer<false>(index.data(), image.data(), r2.data(), n, 0.6, w, own, a.data());
-      const std::size_t kb = sph::detail::keep_closer<true>(index.data(), image.data(), r2.data(), n, 0.6, w, own, b.data());
+      double fa = -1, fb = -2;
+      const std::size_t ka = sph::detail::keep_closer<false>(index.data(), image.data(), r2.data(), n, 0.6, w, own, a.data(), fa);
+      const std::size_t kb = sph::detail::keep_closer<true>(index.data(), image.data(), r2.data(), n, 0.6, w, own, b.data(), fb);
       REQUIRE(ka == kb);
       std::size_t expected = 0;
-      for (std::size_t k = 0; k < n; ++k) expected += r2[k] < 0.6;
+      double farthest = 0;
+      for (std::size_t k = 0; k < n; ++k) {
+        expected += r2[k] < 0.6;
+        if (r2[k] < 0.6) farthest = std::max(farthest, r2[k]);
+      }
       CHECK(ka == expected);
+      CHECK(fa == farthest);
+      CHECK(fb == farthest);
       for (std::size_t k = 0; k < ka; ++k) {
         CHECK(a[k].index == b[k].index);
         CHECK(a[k].image == b[k].image);
