@@ -20,8 +20,10 @@
 
 #include <algorithm>
 #include <array>
+#include <cmath>
 #include <cstdint>
 #include <limits>
+#include <string>
 #include <vector>
 
 namespace sph {
@@ -264,9 +266,11 @@ class CellGrid {
         inverse_cell_size_ = cell_size_.cwiseInverse();
         return;
       }
-      target *= 1.25;
+      // (far off, jump by the factor that would fit if the cells shrank alike on every axis)
+      target *= total > 1e3 * max_cells ? std::pow(total / max_cells, 1.0 / D) : 1.25;
     }
-    throw Error("cell grid: could not choose a cell size (particles spread over too large a range)");
+    throw Error("cell grid: no cell size fits particles spread from " + to_string<D>(lo) + " to " + to_string<D>(hi) +
+                " (a position far from the others?)");
   }
 
   int cell_coordinate(double xa, int a) const {

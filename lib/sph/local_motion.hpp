@@ -23,6 +23,7 @@
 #include <cmath>
 #include <cstdint>
 #include <limits>
+#include <string>
 #include <vector>
 
 namespace sph {
@@ -134,9 +135,11 @@ class LocalMotion {
         total *= cells_[a];
       }
       if (total <= max_cells) return;
-      target *= 1.25;
+      // (far off, jump by the factor that would fit if the cells shrank alike on every axis)
+      target *= total > 1e3 * max_cells ? std::pow(total / max_cells, 1.0 / D) : 1.25;
     }
-    throw Error("local motion: could not choose a cell size (particles spread over too large a range)");
+    throw Error("local motion: no cell size fits particles spread from " + to_string<D>(lo) + " to " + to_string<D>(hi) +
+                " (a position far from the others?)");
   }
 
   // Replace every cell's value by `pick` (the min or the max) of it and its two neighbours

@@ -494,14 +494,27 @@ class NeighbourSearch {
       lo = lo.cwiseMin(x);
       hi = hi.cwiseMax(x);
     }
+    // The volume per particle, over the axes the particles spread along: particles on a line
+    // in 2D, or in a plane in 3D, fill a space of fewer dimensions, and their h comes from
+    // the spacing along it (a zero extent would give h = 0).
     double volume = 1.0;
+    int spread = 0;  // axes with an extent
     for (int a = 0; a < D; ++a) {
       const double extent = box.periodic[a] ? box.length(a) : hi[a] - lo[a];
-      volume *= std::max(extent, 1e-300);
+      if (extent > 0) {
+        volume *= extent;
+        ++spread;
+      }
+    }
+    if (spread == 0) {
+      throw Error("neighbour search: all " + std::to_string(n) + " particles are at one point, " + to_string<D>(lo) +
+                  ", so nothing sets a length to start h from (give the particles distinct positions, or h)");
     }
     const double per_particle = volume / static_cast<double>(n);
     const double neighbours = std::max(rule.neighbours, 1.0);
-    const double guess = 0.5 * root<D>(neighbours * per_particle / unit_ball_volume<D>());
+    const double ball = spread == 1 ? unit_ball_volume<1>() : spread == 2 ? unit_ball_volume<2>() : unit_ball_volume<3>();
+    const double ratio = neighbours * per_particle / ball;
+    const double guess = 0.5 * (spread == D ? root<D>(ratio) : std::pow(ratio, 1.0 / spread));
     for (auto& h : p.smoothing_length) {
       if (!(std::isfinite(h) && h > 0)) h = guess;
     }

@@ -229,6 +229,29 @@ TEST_CASE("smoothing-length failures name the particle", "[smoothing_length][deg
     sph::compute_density(p, search.list());
     for (double rho : p.density) CHECK(std::isfinite(rho));
   }
+  SECTION("particles on a line in 2D, or in a plane in 3D, start h from their spacing along it") {
+    // (before: a zero extent made the volume per particle, and so the first h, vanish, and
+    // the cell grid gave up with an error that did not say why)
+    sph::Particles<2> line;
+    for (int i = 0; i < 100; ++i) line.add(Vec<2>(0.01 * i, 0.3), Vec<2>::Zero(), 1.0);
+    sph::NeighbourSearch<2> search2;
+    search2.update(line, sph::Box<2>::open(), sph::SmoothingLengthRule::neighbour_number(10));
+    CHECK(line.neighbour_count[50] == 10);
+    CHECK(line.smoothing_length[50] == Approx(0.0275).epsilon(0.05));
+    sph::Particles<3> plane;
+    for (int i = 0; i < 20; ++i)
+      for (int j = 0; j < 20; ++j) plane.add(Vec<3>(0.01 * i, -2.0, 0.01 * j), Vec<3>::Zero(), 1.0);
+    sph::NeighbourSearch<3> search3;
+    search3.update(plane, sph::Box<3>::open(), sph::SmoothingLengthRule::neighbour_number(12, 2));
+    CHECK(std::abs(plane.neighbour_count[210] - 12) <= 2);
+  }
+  SECTION("particles all at one point, without h, are an error that says so") {
+    sph::Particles<2> p;
+    for (int i = 0; i < 10; ++i) p.add(Vec<2>(0.25, 0.5), Vec<2>::Zero(), 1.0);
+    sph::NeighbourSearch<2> search;
+    CHECK_THROWS_WITH(search.update(p, sph::Box<2>::open(), sph::SmoothingLengthRule::neighbour_number(5)),
+                      Catch::Contains("all 10 particles are at one point"));
+  }
   SECTION("a non-finite position") {
     auto p = sph::make_particles<2>(sph::uniform_random<2>(Vec<2>::Zero(), Vec<2>::Ones(), 100, 2), 0.01);
     p.position[12] = Vec<2>(std::nan(""), 0.5);
