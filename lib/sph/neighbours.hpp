@@ -938,7 +938,8 @@ class NeighbourSearch {
   // A particle whose farthest kept pair is closer than 2h_j for the smallest h_j near it has
   // none; in gas at rest or in uniform flow that is nearly every particle.  When `h_floor` is
   // given (the smallest h near each particle, LocalMotion::neighbourhood_min, valid for the
-  // particles not searched again), those are passed over without reading their pairs.  The rest
+  // particles not searched again), those are passed over without reading their pairs; the
+  // others first compare each 2h_j with their farthest pair.  The rest
   // measure their pairs' distances again: between the same unwrapped positions, with the same
   // images (translated back from the frame of the stored positions), by the same arithmetic as
   // the refresh, so that each distance is the one that kept the pair, to the bit.  Few
@@ -953,6 +954,13 @@ class NeighbourSearch {
       if (h_floor && !search_again_[i] && farthest2_[i] < support2((*h_floor)[i])) continue;
       const std::size_t first = block.kept.first[i - block.begin], count = block.kept.count[i - block.begin];
       const Neighbour* pairs = kept + first;
+      // Only a neighbour whose 2h_j does not reach past i's farthest pair can make a one-sided
+      // pair (a load of h_j each, before any position).
+      const double farthest2 = farthest2_[i];
+      int possible = 0;
+#pragma omp simd reduction(+ : possible)
+      for (std::size_t e = 0; e < count; ++e) possible += support2(h[pairs[e].index]) <= farthest2;
+      if (possible == 0) continue;
       if (block.r2.size() < count) block.r2.resize(2 * count);
       double* r2 = block.r2.data();
       const Image own = wrapped_[i];
