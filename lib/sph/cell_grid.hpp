@@ -237,11 +237,7 @@ class CellGrid {
 
   // Choose origin, number of cells and cell size on each axis.
   void set_geometry(const std::vector<Vec<D>>& x, double target) {
-    Vec<D> lo = x[0], hi = x[0];
-    for (const auto& xi : x) {
-      lo = lo.cwiseMin(xi);
-      hi = hi.cwiseMax(xi);
-    }
+    const auto [lo, hi] = bounds<D>(x);
     require(lo.allFinite() && hi.allFinite(), "cell grid: a particle position is not finite");
     // Keep the number of cells at most ~4 N (+ a floor): enlarge the target until it fits.
     const double max_cells = 4.0 * static_cast<double>(x.size()) + 64.0;

@@ -9,6 +9,7 @@
 
 #include <cmath>
 #include <string>
+#include <vector>
 
 namespace sph {
 
@@ -50,6 +51,23 @@ constexpr double unit_ball_volume() {
 inline const char* axis_name(int a) {
   static const char* names[] = {"x", "y", "z"};
   return (a >= 0 && a < 3) ? names[a] : "?";
+}
+
+/// The smallest and the largest coordinate of a set of points on each axis.
+template <int D>
+struct Bounds {
+  Vec<D> lo, hi;
+};
+
+/// The bounds of `points` (which must not be empty).
+template <int D>
+Bounds<D> bounds(const std::vector<Vec<D>>& points) {
+  Bounds<D> b{points[0], points[0]};
+  for (const Vec<D>& x : points) {
+    b.lo = b.lo.cwiseMin(x);
+    b.hi = b.hi.cwiseMax(x);
+  }
+  return b;
 }
 
 /// A vector printed as "(x, y, z)" for error messages.

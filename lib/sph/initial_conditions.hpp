@@ -215,8 +215,7 @@ template <int D>
 void order_by_cells(std::vector<Vec<D>>& points, double cell) {
   require(std::isfinite(cell) && cell > 0, "order_by_cells: the cell size must be positive and finite");
   if (points.empty()) return;
-  Vec<D> lo = points[0];
-  for (const Vec<D>& x : points) lo = lo.cwiseMin(x);
+  const Vec<D> lo = bounds<D>(points).lo;
   std::vector<std::array<long, D>> key(points.size());
   for (std::size_t i = 0; i < points.size(); ++i) {
     for (int a = 0; a < D; ++a) key[i][a] = static_cast<long>(std::floor((points[i][a] - lo[a]) / cell));

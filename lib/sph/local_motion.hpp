@@ -116,11 +116,7 @@ class LocalMotion {
   }
 
   void set_geometry(const std::vector<Vec<D>>& x, const Box<D>& box, double target) {
-    Vec<D> lo = x[0], hi = x[0];
-    for (const auto& xi : x) {
-      lo = lo.cwiseMin(xi);
-      hi = hi.cwiseMax(xi);
-    }
+    const auto [lo, hi] = bounds<D>(x);
     require(lo.allFinite() && hi.allFinite(), "local motion: a particle position is not finite");
     const double max_cells = 2.0 * static_cast<double>(x.size()) + 64.0;
     for (int attempt = 0; attempt < 200; ++attempt) {

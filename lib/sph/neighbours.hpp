@@ -66,11 +66,11 @@ struct Neighbour {
 namespace detail {
 
 /// Append to `out` the entries k < n of (index, image) with r2[k] < limit2, in order, and
-/// return how many; `farthest2` gets the largest r2 among them (0 if none).  When `wrapped` is given, each image is
-/// translated to image - own + wrapped[index]: from the frame of the unwrapped positions, in
-/// which the search keeps candidates, to the frame of the stored ones (own = wrapped[i] for the
-/// particle whose pairs these are; see NeighbourSearch::try_reuse).  `out` must have room for
-/// n entries: entries past the kept ones may be overwritten.
+/// return how many; `farthest2` gets the largest r2 among them (0 if none).  When `wrapped`
+/// is given, each image is translated to image - own + wrapped[index]: from the frame of the
+/// unwrapped positions, in which the search keeps candidates, to the frame of the stored ones
+/// (own = wrapped[i] for the particle whose pairs these are; see NeighbourSearch::try_reuse).
+/// `out` must have room for n entries: entries past the kept ones may be overwritten.
 ///
 /// The plain loop writes every entry and advances the end past the kept ones only (no
 /// branch to mispredict), but still moves one entry per iteration.  With AVX-512 the entries
@@ -367,7 +367,7 @@ class NeighbourSearch {
           if (kept == Kept::none || search_again_[i]) keep_own(block, i, refreshed(block, i, unwrapped), p.smoothing_length[i]);
         }
       }
-      find_reverse(p, block, h_floor);
+      find_reverse(p, block, unwrapped, h_floor);
     }
     assemble_list(p, box);
   }
@@ -489,11 +489,7 @@ class NeighbourSearch {
       if (!(std::isfinite(h) && h > 0)) all_set = false;
     }
     if (all_set) return;
-    Vec<D> lo = p.position[0], hi = p.position[0];
-    for (const auto& x : p.position) {
-      lo = lo.cwiseMin(x);
-      hi = hi.cwiseMax(x);
-    }
+    const auto [lo, hi] = bounds<D>(p.position);
     // The volume per particle, over the axes the particles spread along: particles on a line
     // in 2D, or in a plane in 3D, fill a space of fewer dimensions, and their h comes from
     // the spacing along it (a zero extent would give h = 0).
@@ -944,11 +940,12 @@ class NeighbourSearch {
   // images (translated back from the frame of the stored positions), by the same arithmetic as
   // the refresh, so that each distance is the one that kept the pair, to the bit.  Few
   // particles have any one-sided pair (a vectorised count finds them).
-  void find_reverse(const Particles<D>& p, Block& block, const std::vector<double>* h_floor) {
+  void find_reverse(const Particles<D>& p, Block& block, const PositionView<D>& unwrapped,
+                    const std::vector<double>* h_floor) {
     block.reverse.clear();
     const double* h = p.smoothing_length.data();
     const Neighbour* kept = block.kept.pairs.data();
-    const PositionView<D> u = unwrapped_view();
+    const PositionView<D> u = unwrapped;  // a private copy: its pointers stay in registers
     const Image* wrapped = any_wrapped_ ? wrapped_.data() : nullptr;
     for (std::size_t i = block.begin; i < block.end; ++i) {
       if (h_floor && !search_again_[i] && farthest2_[i] < support2((*h_floor)[i])) continue;
