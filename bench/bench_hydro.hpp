@@ -7,6 +7,7 @@
 
 #include "sph/setups/shock_tube.hpp"
 #include "sph/simulation.hpp"
+#include "sph/terms/pressure.hpp"
 #include "sph/viscosity/monaghan_gingold_1983.hpp"
 
 #include <omp.h>
@@ -26,8 +27,13 @@ struct StepCost {
   bool identical_to_one_thread = true;
 };
 
+// The scene: the pressure force and the Monaghan-Gingold viscosity, nothing else.
 template <int D>
-using SodSimulation = sph::Simulation<sph::Physics<D, sph::Kernel<D>, sph::IdealGas, sph::MonaghanGingold1983>>;
+struct Sod : sph::Scene<D> {
+  using Terms = sph::Terms<sph::PressureHernquistKatz, sph::MonaghanGingold1983>;
+};
+template <int D>
+using SodSimulation = sph::Simulation<Sod<D>>;
 
 // Sod's tube in D dimensions, left spacing as given, with the Monaghan-Gingold viscosity.
 template <int D>

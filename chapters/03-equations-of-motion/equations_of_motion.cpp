@@ -167,6 +167,7 @@
 #include "sph/setups/shock_tube.hpp"
 #include "sph/simulation.hpp"
 #include "sph/snapshot.hpp"
+#include "sph/terms/pressure.hpp"
 #include "sph/viscosity/monaghan_gingold_1983.hpp"
 
 #include <algorithm>
@@ -182,20 +183,26 @@ namespace {
 
 /// \subsection ch03_schemes The three schemes
 ///
-/// A scheme is a type: the dimension, the kernel, the equation of state, the viscosity and the
-/// pressure form are template arguments of sph::Physics, and the simulation compiles only what
-/// they name.  The inviscid scheme contains no viscosity code at all; the printed scheme
-/// differs from it in one pure function, the `bracket` of lib/sph/forces.hpp; the viscous
-/// scheme of chapter 4 adds sph::MonaghanGingold1983 to the bracket.  The dimension is a
-/// template parameter, chosen in main().
+/// A scheme is a type, a *scene*: it derives from sph::Scene, which supplies the defaults
+/// (the M4 kernel, an ideal gas, the leapfrog, no gravity, no boundaries), and names its list
+/// of terms.  The simulation compiles only what the scene names.  The inviscid scheme has the
+/// pressure force alone and contains no viscosity code at all; the printed scheme differs from
+/// it in one pure function, the `bracket` of lib/sph/terms/pressure.hpp; the viscous scheme of
+/// chapter 4 adds sph::MonaghanGingold1983 to the terms.  The dimension is a template
+/// parameter, chosen in main().
 
 template <int D>
-using HernquistKatz = sph::Physics<D, sph::Kernel<D>, sph::IdealGas, sph::NoViscosity, sph::PressureHernquistKatz>;
+struct HernquistKatz : sph::Scene<D> {
+  using Terms = sph::Terms<sph::PressureHernquistKatz>;
+};
 template <int D>
-using AsPrinted = sph::Physics<D, sph::Kernel<D>, sph::IdealGas, sph::NoViscosity, sph::PressureAsPrinted>;
+struct AsPrinted : sph::Scene<D> {
+  using Terms = sph::Terms<sph::PressureAsPrinted>;
+};
 template <int D>
-using WithViscosity =
-    sph::Physics<D, sph::Kernel<D>, sph::IdealGas, sph::MonaghanGingold1983, sph::PressureHernquistKatz>;
+struct WithViscosity : sph::Scene<D> {
+  using Terms = sph::Terms<sph::PressureHernquistKatz, sph::MonaghanGingold1983>;
+};
 
 /// printf into a std::string, for messages and labels.
 template <class... Args>
@@ -237,7 +244,7 @@ struct SodRun {
 };
 
 template <class P>
-SodRun<P::D> run_sod(const std::string& name, const SodScene& scene, typename P::Viscosity viscosity,
+SodRun<P::D> run_sod(const std::string& name, const SodScene& scene, const typename P::Terms& terms,
                      bool report_progress) {
   constexpr int D = P::D;
   app::Stopwatch clock;
@@ -248,7 +255,7 @@ SodRun<P::D> run_sod(const std::string& name, const SodScene& scene, typename P:
   sph::Settings settings;
   settings.smoothing = scene.smoothing();
   settings.courant = scene.courant;
-  sph::Simulation<P> sim(tube.particles, tube.box, sph::IdealGas(scene.tube.gamma), viscosity, settings);
+  sph::Simulation<P> sim(tube.particles, tube.box, sph::IdealGas(scene.tube.gamma), terms, settings);
   const auto energy = [](const sph::Particles<D>& p) { return sph::kinetic_energy(p) + sph::thermal_energy(p); };
   const double energy_before = energy(sim.particles());
   // Integrate, with a progress line for the runs we show.
@@ -563,7 +570,7 @@ struct StreamsRun {
 };
 
 template <class P>
-StreamsRun<P::D> run_streams(const std::string& name, const StreamsScene& scene, typename P::Viscosity viscosity,
+StreamsRun<P::D> run_streams(const std::string& name, const StreamsScene& scene, const typename P::Terms& terms,
                              const sph::SmoothingLengthRule& smoothing, long step_budget) {
   constexpr int D = P::D;
   app::Stopwatch clock;
@@ -582,7 +589,7 @@ StreamsRun<P::D> run_streams(const std::string& name, const StreamsScene& scene,
   sph::Settings settings;
   settings.smoothing = smoothing;
   settings.max_steps = step_budget;
-  sph::Simulation<P> sim(streams.particles, streams.box, sph::IdealGas(scene.setup.gamma), viscosity, settings);
+  sph::Simulation<P> sim(streams.particles, streams.box, sph::IdealGas(scene.setup.gamma), terms, settings);
   const auto record = [&] {
     run.times.push_back(sim.time());
     for (std::size_t k = 0; k < run.tracked.size(); ++k) run.paths[k].push_back(sim.particles().position[run.tracked[k]][0]);
@@ -692,11 +699,11 @@ void streams_figure(const std::vector<const StreamsRun<D>*>& runs, const Streams
 /// transition a few h wide, and the error should fall as \f$ \Delta x^1 \f$.
 
 template <class P>
-void sweep_sod(sph::ErrorVsTime& study, const std::string& method, SodScene scene, typename P::Viscosity viscosity,
+void sweep_sod(sph::ErrorVsTime& study, const std::string& method, SodScene scene, const typename P::Terms& terms,
                const std::vector<int>& cells) {
   for (int n : cells) {
     scene.tube.left_spacing = 1.0 / n;
-    const auto run = run_sod<P>(method, scene, viscosity, false);
+    const auto run = run_sod<P>(method, scene, terms, false);
     const SodErrors e = sod_errors(run.particles, Reference{run.exact, 1.0}, scene.t_end);
     study.add({method, run.in_window, scene.tube.left_spacing, run.seconds,
                {{"L1(rho)", e.density}, {"L1(v)", e.velocity}, {"L1(P)", e.pressure}}});
@@ -792,7 +799,7 @@ int main(int argc, char** argv) {
     const auto inviscid =
         measure(run_sod<HernquistKatz<dim>>("Hernquist-Katz, no viscosity", sod, {}, true), sod, sod_gas);
     const auto viscous =
-        measure(run_sod<WithViscosity<dim>>("Hernquist-Katz + Monaghan-Gingold AV", sod, viscosity, true), sod, sod_gas);
+        measure(run_sod<WithViscosity<dim>>("Hernquist-Katz + Monaghan-Gingold AV", sod, {{}, viscosity}, true), sod, sod_gas);
     const auto printed =
         measure(run_sod<AsPrinted<dim>>("eq 4 as printed, no viscosity", sod, {}, true), sod, printed_gas);
     const std::pair<const SodResult<dim>*, const char*> sod_runs[] = {
@@ -886,7 +893,7 @@ int main(int argc, char** argv) {
     const auto pileup = run_streams<HernquistKatz<dim>>("no viscosity, h from density", streams, {},
                                                         sph::SmoothingLengthRule::from_density(4.0), pileup_budget);
     const auto stopped = run_streams<WithViscosity<dim>>(say("Monaghan-Gingold AV, %g neighbours", streams.neighbours),
-                                                         streams, viscosity, neighbour_rule, unlimited);
+                                                         streams, {{}, viscosity}, neighbour_rule, unlimited);
     const double dx_stream = streams.setup.length / passing.left_count;
     std::printf("  (of %zu pairs; deepest: how far a particle has passed one that started ahead of it)\n",
                 passing.inversions.pairs());
@@ -911,7 +918,7 @@ int main(int argc, char** argv) {
     const std::vector<int> sweep_cells = sph::geometric_series(100, 2, levels);
     sph::ErrorVsTime study("Sod's shock tube at t = 0.2: L1 errors in -0.5 <= x <= 0.5, N = particles there");
     sweep_sod<HernquistKatz<dim>>(study, "no viscosity", sod, {}, sweep_cells);
-    sweep_sod<WithViscosity<dim>>(study, "Monaghan-Gingold AV", sod, viscosity, sweep_cells);
+    sweep_sod<WithViscosity<dim>>(study, "Monaghan-Gingold AV", sod, {{}, viscosity}, sweep_cells);
     std::printf("\n%s", study.table().c_str());
     save_error_figure(study, sod, sweep_cells.back(), chapter.figure_path("sod_error_vs_time.png").string());
 

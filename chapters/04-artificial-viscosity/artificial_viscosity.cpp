@@ -27,7 +27,7 @@
 ///     \mu_{ij} = \frac{\bar h_{ij}\,\mathbf r_{ij}\cdot\mathbf v_{ij}}{r_{ij}^2 + \nu^2}, \f]
 /// switched on only for approaching pairs, \f$ \mathbf r_{ij}\cdot\mathbf v_{ij} < 0 \f$
 /// (with \f$ \mathbf r_{ij} = \mathbf r_i - \mathbf r_j \f$ and
-/// \f$ \mathbf v_{ij} = \mathbf v_i - \mathbf v_j \f$: the sign convention of NOTES.md, since
+/// \f$ \mathbf v_{ij} = \mathbf v_i - \mathbf v_j \f$: the sign convention of chapter 3, since
 /// the printed \f$ \mathbf v_{ij} = \mathbf v_j - \mathbf v_i \f$ of eq 4 contradicts eq 6).
 /// Since \f$ \mu_{ij} < 0 \f$ for an approaching pair, both terms are positive: they add to the
 /// pressure between particles that run into each other, and nothing else.
@@ -47,12 +47,10 @@
 /// \f[ \delta t = \min_i \frac{\varepsilon h_i}{|\mathbf v_i| + c_i + 1.2(\alpha c_i + \beta\mu_{i,\max})},
 ///     \qquad \varepsilon = 0.3. \f]
 ///
-/// In code, the whole term is one pure pair function, and the scene chooses it at compile
-/// time by naming it in its Physics type:
-/// \code
-/// using Hydro = sph::Physics<1, sph::Kernel<1>, sph::IdealGas, sph::MonaghanGingold1983>;
-/// \endcode
-/// A scene that names `sph::NoViscosity` instead (chapter 3) contains no viscosity code at all.
+/// In code, the whole term is one pure pair function that adds \f$ \Pi_{ij} \f$ to the bracket
+/// (lib/sph/viscosity/monaghan_gingold_1983.hpp), and a scene chooses it at compile time by
+/// naming it in its list of terms (`ViscousGas` below).  A scene that does not name it
+/// (chapter 3's inviscid gas) contains no viscosity code at all.
 
 #include "app/chapter.hpp"
 #include "app/error_figure.hpp"
@@ -65,6 +63,7 @@
 #include "sph/setups/shock_tube.hpp"
 #include "sph/simulation.hpp"
 #include "sph/snapshot.hpp"
+#include "sph/terms/pressure.hpp"
 #include "sph/viscosity/monaghan_gingold_1983.hpp"
 
 #include <cstdio>
@@ -75,6 +74,14 @@
 #include <vector>
 
 namespace {
+
+/// The scene of this chapter: chapter 3's gas with the viscosity added to its terms.  The
+/// other parts (the M4 kernel, an ideal gas, the leapfrog, no gravity, no boundaries) are the
+/// defaults of sph::Scene.
+template <int D>
+struct ViscousGas : sph::Scene<D> {
+  using Terms = sph::Terms<sph::PressureHernquistKatz, sph::MonaghanGingold1983>;
+};
 
 /// \section ch04_run Step 1: one shock-tube run
 ///
@@ -99,12 +106,11 @@ struct TubeRun {
 template <int D>
 TubeRun<D> run_tube(const sph::ShockTubeSetup& setup, const sph::SmoothingLengthRule& rule,
                     const sph::MonaghanGingold1983& viscosity, double t_end, const std::string& label) {
-  using Hydro = sph::Physics<D, sph::Kernel<D>, sph::IdealGas, sph::MonaghanGingold1983>;
   sph::Settings settings;
   settings.smoothing = rule;
   const sph::ShockTube<D> tube = sph::make_shock_tube<D>(setup, rule);
   const app::Stopwatch clock;
-  sph::Simulation<Hydro> sim(tube.particles, tube.box, sph::IdealGas(setup.gamma), viscosity, settings);
+  sph::Simulation<ViscousGas<D>> sim(tube.particles, tube.box, sph::IdealGas(setup.gamma), viscosity, settings);
   const sph::Vec<D> p0 = sph::total_momentum(sim.particles());
   // A live line on a terminal for long runs; the tables below are the report.
   app::ProgressDisplay display = app::ProgressDisplay::automatic();

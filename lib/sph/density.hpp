@@ -8,10 +8,23 @@
 ///    \f$ m_i W(0, h_i) \f$ included;
 ///  - **gather** (Watkins et al. 1996 eq A1): \f$ \rho_i = \sum_j m_j\, W(r_{ij}, h_i) \f$.
 ///
+/// The same loop can sum, when a term of the scene asks for them (fields.hpp, Needs), the rate
+/// of change of that density by the continuity equation and the velocity divergence and curl,
+/// with the same masses and kernel as the density:
+/// \f[ \dot\rho_i = \sum_j w_{ij}\, \mathbf v_{ij}\cdot\nabla_i W_{ij}, \qquad
+///     (\nabla\cdot\mathbf v)_i = -\frac{\dot\rho_i}{\rho_i}, \qquad
+///     (\nabla\times\mathbf v)_i = \frac{1}{\rho_i} \sum_j w_{ij}\, \mathbf v_{ij}\times\nabla_i W_{ij}, \f]
+/// with \f$ w_{ij} = \bar m_{ij} \f$ and \f$ W_{ij} = W(r_{ij}, \bar h_{ij}) \f$ (pair-averaged)
+/// or \f$ m_j \f$ and \f$ W(r_{ij}, h_i) \f$ (gather).  \f$ \dot\rho_i \f$ is then exactly the
+/// time derivative of the density sum at fixed h (Selhammar eqs 10-11 use it to tell
+/// compression from a shock), and for a linear velocity field both derivatives are those of
+/// the field wherever the kernel's first moments vanish (SPHENIX sums them in this loop too).
+///
 /// The self term can be left out (Watkins' "random, unsettled" distribution, Fig. 3a, excludes
 /// it: a random set has no particle-free zone around each particle, and with the self term the
 /// density is biased high).
 
+#include "sph/fields.hpp"
 #include "sph/kernel.hpp"
 #include "sph/neighbours.hpp"
 #include "sph/parallel.hpp"
@@ -62,6 +75,59 @@ double density_of(const Particles<D>& p, const NeighbourList<D>& list, const Pos
   return rho + (form.self_term ? m[i] * K::value(0.0, h[i]) : 0.0);
 }
 
+/// rho_i and the velocity sums of one particle: \f$ \sum_j w_{ij} \mathbf v_{ij}\cdot\nabla_i W_{ij} \f$
+/// and the components of \f$ \sum_j w_{ij} \mathbf v_{ij}\times\nabla_i W_{ij} \f$.
+struct DensityAndRates {
+  double rho = 0, rate = 0;
+  double curl[3] = {0, 0, 0};
+};
+
+/// rho_i with the velocity sums the scene needs, in one loop.  The density is computed by
+/// exactly the arithmetic of density_of (one kernel evaluation gives W and its gradient), so
+/// asking for the rates does not change rho in its last bit.
+template <int D, class K, Needs needs>
+DensityAndRates density_and_rates(const Particles<D>& p, const NeighbourList<D>& list, const PositionView<D>& positions,
+                                  const std::array<const double*, D>& velocities, std::size_t i, DensityForm form) {
+  constexpr bool curl = has(needs, Needs::velocity_curl) && D > 1;
+  const PositionView<D> x = positions;  // private copies: their pointers stay in registers
+  const std::array<const double*, D> v = velocities;
+  const double* h = p.smoothing_length.data();
+  const double* m = p.mass.data();
+  const std::span<const Neighbour> nb = list.of(i);
+  const auto count = static_cast<std::ptrdiff_t>(nb.size());
+  const bool averaged = form.sum == DensityForm::Sum::pair_averaged;
+  double rho = 0, rate = 0, c0 = 0, c1 = 0, c2 = 0;
+#pragma omp simd simdlen(8) if(simd : D > 1) reduction(+ : rho, rate, c0, c1, c2)
+  for (std::ptrdiff_t k = 0; k < count; ++k) {
+    const Neighbour& n = nb[static_cast<std::size_t>(k)];
+    const std::size_t j = n.index;
+    double r_ij[3] = {0, 0, 0}, v_ij[3] = {0, 0, 0}, r2 = 0, rv = 0;
+#pragma GCC unroll 3
+    for (int a = 0; a < D; ++a) {
+      r_ij[a] = x.separation(a, i, n);
+      v_ij[a] = v[a][i] - v[a][j];
+      r2 += r_ij[a] * r_ij[a];
+      rv += r_ij[a] * v_ij[a];
+    }
+    const double w = averaged ? 0.5 * (m[i] + m[j]) : m[j];
+    const auto kernel = K::value_and_gradient_factor(std::sqrt(r2), averaged ? 0.5 * (h[i] + h[j]) : h[i]);
+    rho += w * kernel.w;
+    rate += w * kernel.g * rv;
+    if constexpr (curl) {
+      // v_ij x r_ij: in 2D its z-component only.
+      const double wg = w * kernel.g;
+      if constexpr (D == 2) {
+        c0 += wg * (v_ij[0] * r_ij[1] - v_ij[1] * r_ij[0]);
+      } else {
+        c0 += wg * (v_ij[1] * r_ij[2] - v_ij[2] * r_ij[1]);
+        c1 += wg * (v_ij[2] * r_ij[0] - v_ij[0] * r_ij[2]);
+        c2 += wg * (v_ij[0] * r_ij[1] - v_ij[1] * r_ij[0]);
+      }
+    }
+  }
+  return {rho + (form.self_term ? m[i] * K::value(0.0, h[i]) : 0.0), rate, {c0, c1, c2}};
+}
+
 /// Does nothing: the default for what compute_density does after each particle's sum.
 struct NoFinish {
   void operator()(std::size_t) const {}
@@ -72,15 +138,40 @@ struct NoFinish {
 /// particles).  A particle whose sum is not positive and finite (no neighbours and no self
 /// term, or a NaN upstream) is an error that names it.  `positions` are p.position one array
 /// per axis (PositionArrays); the overload below makes them.
-template <int D, class K = Kernel<D>, class Finish = NoFinish>
+///
+/// With `needs` other than Needs::nothing, the same loop also writes the fields asked for into
+/// `fields` (density_rate, velocity_divergence, velocity_curl), from `velocities` one array
+/// per axis; without, the loop is the plain density sum and `velocities` is not read.
+template <int D, class K = Kernel<D>, Needs needs = Needs::nothing, class Finish = NoFinish>
 void compute_density(Particles<D>& p, const NeighbourList<D>& list, const PositionView<D>& positions,
-                     DensityForm form = DensityForm::selhammar(), const Finish& finish = {}) {
+                     DensityForm form = DensityForm::selhammar(), const Finish& finish = {},
+                     const std::array<const double*, D>& velocities = {}, DerivedFields<D>* fields = nullptr) {
   const std::size_t n = p.size();
   require_positive_masses(p, "density");
+  constexpr bool rates = any_velocity_field(needs);
+  if constexpr (rates) {
+    require(fields != nullptr, "density: velocity fields asked for without a place to put them");
+    if constexpr (has(needs, Needs::density_rate)) fields->density_rate.resize(n);
+    if constexpr (has(needs, Needs::velocity_divergence)) fields->velocity_divergence.resize(n);
+    if constexpr (has(needs, Needs::velocity_curl)) {
+      for (auto& component : fields->velocity_curl) component.resize(n);
+    }
+  }
   long bad = -1;
 #pragma omp parallel for schedule(dynamic, 512) if (n >= parallel_threshold)
   for (std::size_t i = 0; i < n; ++i) {
-    const double rho = density_of<D, K>(p, list, positions, i, form);
+    double rho;
+    if constexpr (rates) {
+      const DensityAndRates sums = density_and_rates<D, K, needs>(p, list, positions, velocities, i, form);
+      rho = sums.rho;
+      if constexpr (has(needs, Needs::density_rate)) fields->density_rate[i] = sums.rate;
+      if constexpr (has(needs, Needs::velocity_divergence)) fields->velocity_divergence[i] = -sums.rate / rho;
+      if constexpr (has(needs, Needs::velocity_curl)) {
+        for (int a = 0; a < curl_components<D>; ++a) fields->velocity_curl[a][i] = sums.curl[a] / rho;
+      }
+    } else {
+      rho = density_of<D, K>(p, list, positions, i, form);
+    }
     p.density[i] = rho;
     if (std::isfinite(rho) && rho > 0) {
       finish(i);
@@ -104,7 +195,7 @@ void compute_density(Particles<D>& p, const NeighbourList<D>& list, DensityForm 
                      const Finish& finish = {}) {
   PositionArrays<D> positions;
   positions.assign(p.position);
-  compute_density<D, K>(p, list, positions.view(list.box()), form, finish);
+  compute_density<D, K, Needs::nothing>(p, list, positions.view(list.box()), form, finish);
 }
 
 }  // namespace sph

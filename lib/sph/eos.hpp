@@ -34,6 +34,7 @@ struct Polytropic {
   static constexpr bool evolves_energy = false;
   static constexpr const char* name = "polytropic";
 
+  Polytropic() = default;
   Polytropic(double k, double g) : K(k), gamma(g) {
     require(std::isfinite(k) && k > 0, "polytropic gas: K must be positive");
     require(std::isfinite(g) && g >= 1.0, "polytropic gas: gamma must be at least 1");
@@ -48,6 +49,7 @@ struct Isothermal {
   static constexpr bool evolves_energy = false;
   static constexpr const char* name = "isothermal";
 
+  Isothermal() = default;
   explicit Isothermal(double sound) : c(sound) {
     require(std::isfinite(sound) && sound > 0, "isothermal gas: the sound speed must be positive");
   }

@@ -2,7 +2,7 @@
 /// \file
 /// \brief What a pair function sees: the geometry and kinematics of one interacting pair.
 ///
-/// Sign conventions (NOTES.md, Selhammar eq 4 erratum): \f$ \mathbf r_{ij} = \mathbf r_i - \mathbf r_j \f$,
+/// Sign conventions (Selhammar eq 4 read with the sign of his eq 6): \f$ \mathbf r_{ij} = \mathbf r_i - \mathbf r_j \f$,
 /// \f$ \mathbf v_{ij} = \mathbf v_i - \mathbf v_j \f$; the pair approaches when
 /// \f$ \mathbf r_{ij}\cdot\mathbf v_{ij} < 0 \f$.  The kernel is evaluated at the mean smoothing
 /// length \f$ \bar h_{ij} = (h_i + h_j)/2 \f$ (Selhammar eq 1, Watkins eq A5), so
@@ -23,6 +23,7 @@ struct Pair {
   double r = 0;      ///< |r_ij|
   double rv = 0;     ///< r_ij . v_ij  (negative when approaching)
   double h_bar = 0;  ///< (h_i + h_j) / 2
+  double support2 = 0;  ///< (support * h_bar)^2: the pair is inside the kernel when r2 < support2
   double gradient_factor = 0;  ///< g with grad_i W(r_ij, h_bar) = g r_ij
 };
 

@@ -13,10 +13,18 @@
 #include "sph/error.hpp"
 
 #include <cstddef>
+#include <cstdint>
 #include <string>
 #include <vector>
 
 namespace sph {
+
+/// What the integrator does with a particle.  A fluid particle moves; a fixed boundary particle
+/// takes part in the density and force sums like any other (it is a neighbour, it has a
+/// density and a pressure) but is never kicked or drifted, and does not limit the time step
+/// (Watkins et al. 1996, sect. 4.1).  Only a scene whose boundaries allow it (boundaries.hpp)
+/// may have fixed particles.
+enum class ParticleKind : std::uint8_t { fluid = 0, fixed = 1 };
 
 template <int D>
 struct Particles {
@@ -25,6 +33,7 @@ struct Particles {
   std::vector<Vec<D>> velocity;  ///< v_i; kicked by the integrator
   std::vector<double> mass;      ///< m_i; constant
   std::vector<double> internal_energy;  ///< u_i, thermal energy per unit mass; kicked by the integrator
+  std::vector<ParticleKind> kind;       ///< fluid (moves) or fixed boundary; constant
 
   // --- written by the smoothing-length pass ------------------------------------------------
   std::vector<double> smoothing_length;  ///< h_i; kernel support is 2 h_i
@@ -49,6 +58,7 @@ struct Particles {
     velocity.resize(n, Vec<D>::Zero());
     mass.resize(n, 0.0);
     internal_energy.resize(n, 0.0);
+    kind.resize(n, ParticleKind::fluid);
     smoothing_length.resize(n, 0.0);
     neighbour_count.resize(n, 0);
     density.resize(n, 0.0);
@@ -59,9 +69,11 @@ struct Particles {
   }
 
   /// Append one particle.
-  void add(const Vec<D>& x, const Vec<D>& v, double m, double u = 0.0, double h = 0.0) {
+  void add(const Vec<D>& x, const Vec<D>& v, double m, double u = 0.0, double h = 0.0,
+           ParticleKind k = ParticleKind::fluid) {
     const std::size_t n = size();
     resize(n + 1);
+    kind[n] = k;
     position[n] = x;
     velocity[n] = v;
     mass[n] = m;
@@ -73,6 +85,8 @@ struct Particles {
   /// non-negative finite internal energy.  Throws sph::Error naming the first bad particle.
   void validate() const {
     require(size() > 0, "particles: the set is empty");
+    require(kind.size() == size(), "particles: the kind array has " + std::to_string(kind.size()) + " entries for " +
+                                       std::to_string(size()) + " particles (use resize() or add())");
     for (std::size_t i = 0; i < size(); ++i) {
       const bool good = position[i].allFinite() && velocity[i].allFinite() && std::isfinite(mass[i]) &&
                         mass[i] > 0 && std::isfinite(internal_energy[i]) && internal_energy[i] >= 0;

@@ -1,65 +1,52 @@
 #pragma once
 /// \file
-/// \brief A scene's physics chosen at compile time, and the step that runs only what it chose.
+/// \brief The step: one evaluation of every part a scene names, and the time step they allow.
 ///
-/// A scene names its dimension, kernel, equation of state, pressure form and viscosity as
-/// template arguments of Physics; Simulation<Physics> then runs, every step,
+/// Simulation<Scene> holds the particles, the box and the parts of the scene (scene.hpp), and
+/// advances them with the scene's integrator.  Every integrator calls one evaluate(), which
+/// runs, in order, only the passes the scene's parts need:
 ///
-///   smoothing lengths + neighbour list -> density -> equation of state -> forces -> kick/drift,
+/// | pass | runs when | writes |
+/// |:--|:--|:--|
+/// | smoothing lengths + neighbour list | the scene has terms | h, neighbour count, the list |
+/// | density (+ equation of state, + `after_density` hooks) | the scene has terms | rho, P, c, P/rho^2; rho-dot, div v, curl v if a term needs them |
+/// | gradient (a second loop over the same list) | a term has a gradient pass | the terms' own fields |
+/// | `before_force` hooks | a term has one | the terms' own fields |
+/// | force | the scene has terms | a, du/dt, max mu |
+/// | `after_force` hooks | a term has one | a, du/dt (per-particle terms) |
+/// | self-gravity | Gravity is not NoGravity | a |
+/// | external potential | External is not NoExternalPotential | a |
 ///
-/// and nothing else: a scene without viscosity has no viscosity code, a polytropic gas no
-/// energy equation, a 1D scene no 3D vectors.  Later chapters add terms by adding template
-/// arguments, without touching the scenes that do not use them.
-///
-/// **Integrator.** Selhammar (1997) eq 8 is the leapfrog with velocities and energies at half
-/// steps and positions at whole steps.  We write it in its kick-drift-kick form,
-/// \f[ \mathbf v^{n+1/2} = \mathbf v^n + \tfrac12\delta t\,\mathbf a^n,\quad
-///     \mathbf r^{n+1} = \mathbf r^n + \delta t\,\mathbf v^{n+1/2},\quad
-///     \mathbf v^{n+1} = \mathbf v^{n+1/2} + \tfrac12\delta t\,\mathbf a^{n+1}, \f]
-/// (and the same for u), which for a constant step produces exactly the same half-step
-/// velocities and whole-step positions as eq 8, but also has v and u at whole steps (for
-/// diagnostics and snapshots) and lets the step change from one step to the next.  The forces
-/// at step n+1 need v and u there; they use the predicted
-/// \f$ \mathbf v^{n+1/2} + \tfrac12\delta t\,\mathbf a^{n} \f$, as in GADGET-2 and SWIFT.
-///
-/// **Time step.** Selhammar eq 7:
-/// \f$ \delta t = \min_i \varepsilon h_i / (|\mathbf v_i| + c_i + 1.2(\alpha c_i + \beta\mu_{i,\max})) \f$
-/// with \f$ \varepsilon = 0.3 \f$, plus an acceleration limit
-/// \f$ \varepsilon\sqrt{h_i/|\mathbf a_i|} \f$ and a cooling limit
-/// \f$ \varepsilon\, u_i/|\dot u_i| \f$ where \f$ \dot u_i < 0 \f$.  As printed, eq 7 uses the particle's own
-/// speed \f$ |\mathbf v_i| \f$, so the step depends on the frame of reference; the
-/// signal-velocity alternative replaces \f$ |\mathbf v_i| \f$ by nothing (it is Galilean
-/// invariant: only relative velocities, through \f$ \mu \f$, enter).  The limiting criterion
-/// and particle of the last step are reported.
+/// **Time step.**  The smallest of the limits the parts bring, over the moving particles:
+/// the Courant criterion of Selhammar eq 7,
+/// \f$ \delta t = \varepsilon h_i / (|\mathbf v_i| + c_i + \sum_\mathrm{terms} s_i) \f$ with
+/// \f$ \varepsilon = 0.3 \f$ and \f$ s_i \f$ the terms' signal speeds (the Monaghan & Gingold
+/// viscosity adds \f$ 1.2(\alpha c_i + \beta\mu_{i,\max}) \f$); an acceleration limit
+/// \f$ \varepsilon\sqrt{h_i/|\mathbf a_i|} \f$; a cooling limit
+/// \f$ \varepsilon\, u_i/|\dot u_i| \f$ where \f$ \dot u_i < 0 \f$; each term's own limit; and the
+/// external potential's.  As printed, eq 7 uses the particle's own speed
+/// \f$ |\mathbf v_i| \f$, so the step depends on the frame of reference; the signal-velocity
+/// alternative leaves it out (only relative velocities, through \f$ \mu \f$, enter).  A scene may
+/// also fix the step (Watkins et al. integrate with a constant one).  The limiting criterion and
+/// particle of the last step are reported.
 
 #include "sph/box.hpp"
 #include "sph/density.hpp"
-#include "sph/eos.hpp"
+#include "sph/fields.hpp"
 #include "sph/forces.hpp"
-#include "sph/kernel.hpp"
 #include "sph/neighbours.hpp"
 #include "sph/parallel.hpp"
 #include "sph/particles.hpp"
-#include "sph/viscosity/none.hpp"
+#include "sph/scene.hpp"
 
 #include <algorithm>
 #include <cmath>
 #include <functional>
 #include <limits>
 #include <string>
+#include <type_traits>
 
 namespace sph {
-
-/// The compile-time choices of a scene.
-template <int Dim, class KernelT = Kernel<Dim>, class EosT = IdealGas, class ViscosityT = NoViscosity,
-          class PressureFormT = PressureHernquistKatz>
-struct Physics {
-  static constexpr int D = Dim;
-  using Kernel = KernelT;
-  using Eos = EosT;
-  using Viscosity = ViscosityT;
-  using PressureForm = PressureFormT;
-};
 
 /// The run-time settings of a scene.
 struct Settings {
@@ -68,97 +55,126 @@ struct Settings {
   TimestepRule timestep_rule = TimestepRule::selhammar_eq7;
   SmoothingLengthRule smoothing = SmoothingLengthRule::neighbour_number(64);
   DensityForm density = DensityForm::selhammar();
+  double fixed_timestep = 0;    ///< a constant step (Watkins et al.); 0: the limits decide
   long max_steps = 10'000'000;  ///< a run that needs more steps stops with an error
   double min_timestep = 1e-12;  ///< a step below this (relative to t_end) stops with an error
 };
 
 /// Which criterion set the last time step, and where.
 struct TimestepLimit {
-  std::string criterion;  ///< "Courant (eq 7)", "acceleration", "cooling", "output time"
+  std::string criterion;  ///< "Courant (eq 7)", "acceleration", "cooling", a term's or a potential's name, "output time", "fixed step"
   std::size_t particle = 0;
   double dt = 0;
 };
 
-template <class P>
+template <class S>
 class Simulation {
  public:
-  static constexpr int D = P::D;
-  using K = typename P::Kernel;
-  using Eos = typename P::Eos;
-  using Viscosity = typename P::Viscosity;
-  static constexpr bool evolve_energy = Eos::evolves_energy;
+  using Scene = S;
+  static constexpr int D = S::D;
+  using K = typename S::Kernel;
+  using Eos = typename S::Eos;
+  using TermList = typename S::Terms;
+  using Gravity = typename S::Gravity;
+  using External = typename S::External;
+  using Boundaries = typename S::Boundaries;
+  using Integrator = typename S::Integrator;
+  /// A scene with no terms has no hydrodynamics: no neighbour search, density or force pass
+  /// (test particles in a potential, or pure N-body).
+  static constexpr bool hydro = TermList::count > 0;
+  static constexpr bool evolve_energy = hydro && Eos::evolves_energy;
+  static constexpr Needs needs = TermList::needs;
 
-  Simulation(Particles<D> particles, Box<D> box, Eos eos, Viscosity viscosity = {}, Settings settings = {})
-      : particles_(std::move(particles)), box_(box), eos_(eos), viscosity_(viscosity), settings_(settings) {
-    require(settings_.courant > 0 && settings_.courant < 1, "simulation: the Courant factor must lie in (0, 1)");
+  /// The particles, the box, and any of the scene's parts in any order, each by its type: the
+  /// equation of state, a term, Settings, the gravity module, the external potential, the
+  /// boundaries, the integrator.  Parts not given take their defaults.
+  template <class... Parts>
+  Simulation(Particles<D> particles, Box<D> box, const Parts&... parts)
+      : particles_(std::move(particles)), box_(box) {
+    (set(parts), ...);
+    require(std::isfinite(settings_.courant) && settings_.courant > 0 && settings_.courant < 1,
+            "simulation: the Courant factor must lie in (0, 1)");
+    require(std::isfinite(settings_.fixed_timestep) && settings_.fixed_timestep >= 0,
+            "simulation: the fixed time step must be positive (or 0 for the adaptive step)");
     box_.validate();
     particles_.validate();
+    boundaries_.validate(particles_);
     for (auto& x : particles_.position) x = box_.wrap(x);
-    compute_accelerations();
+    terms_.for_each([n = particles_.size()](auto& t) {
+      if constexpr (HasResize<std::decay_t<decltype(t)>>) t.resize(n);
+    });
+    evaluate();
   }
 
-  // --- the passes of one evaluation, in order -------------------------------------------
-  /// All passes at the current positions and (predicted) velocities.
-  void compute_accelerations() {
-    search_.update(particles_, box_, settings_.smoothing);
-    scratch_.p_over_rho2.resize(particles_.size());
-    positions_.assign(particles_.position);
-    const PositionView<D> x = positions_.view(box_);
-    compute_density<D, K>(particles_, search_.list(), x, settings_.density,
-                          [this](std::size_t i) { equation_of_state(i); });
-    compute_forces<D, K, typename P::PressureForm, Viscosity, evolve_energy>(particles_, search_.list(), x,
-                                                                            viscosity_, scratch_);
+  // --- one evaluation: every pass the scene needs, at the current state --------------------
+  /// All passes at the current positions and (predicted) velocities and energies.
+  void evaluate() {
+    if constexpr (hydro) {
+      search_.update(particles_, box_, settings_.smoothing);
+      positions_.assign(particles_.position);
+      velocities_.assign(particles_.velocity);
+      fields_.p_over_rho2.resize(particles_.size());
+      density_pass();
+      if constexpr (TermList::template any_gradient_pass<D>) gradient_pass();
+      if constexpr (TermList::template any_before_force<D>) before_force();
+      compute_forces<D, K, TermList, evolve_energy>(particles_, search_.list(), view(), terms_, fields_);
+      if constexpr (TermList::template any_after_force<D>) after_force();
+    } else {
+      std::fill(particles_.acceleration.begin(), particles_.acceleration.end(), Vec<D>::Zero());
+    }
+    if constexpr (Gravity::active) gravity_.add_accelerations(particles_, box_);
+    if constexpr (External::active) external_accelerations();
     check_finite_forces();
-  }
-
-  /// The equation-of-state pass for one particle: P_i, c_i and P_i/rho_i^2 from rho_i and u_i
-  /// (run inside the density loop, right after rho_i).
-  void equation_of_state(std::size_t i) {
-    auto& p = particles_;
-    p.pressure[i] = eos_.pressure(p.density[i], p.internal_energy[i]);
-    p.sound_speed[i] = eos_.sound_speed(p.density[i], p.internal_energy[i]);
-    scratch_.p_over_rho2[i] = p.pressure[i] / (p.density[i] * p.density[i]);
   }
 
   // --- time stepping ------------------------------------------------------------------------
   /// The time step allowed by every criterion now (without the output-time clamp).
   TimestepLimit allowed_timestep() const {
+    if (settings_.fixed_timestep > 0) return {"fixed step", 0, settings_.fixed_timestep};
     const auto& p = particles_;
     const std::size_t n = p.size();
     // Each chunk of particles finds its smallest step, then the chunks are compared in order
     // (a tie goes to the lower index): the same answer for any number of threads.
     constexpr std::size_t chunk = 4096;
-    constexpr const char* criteria[] = {"none", "Courant (eq 7)", "acceleration", "cooling"};
     struct Best {
       double dt = std::numeric_limits<double>::infinity();
       std::size_t particle = 0;
-      int criterion = 0;
+      const char* criterion = "none";
     };
     std::vector<Best> best((n + chunk - 1) / chunk);
+    const ParticleView<D> in = view();
+    const double courant = settings_.courant;
+    const bool own_speed = settings_.timestep_rule == Settings::TimestepRule::selhammar_eq7;
 #pragma omp parallel for schedule(static) if (n >= parallel_threshold)
     for (std::size_t c = 0; c < best.size(); ++c) {
       Best b;
+      const auto consider = [&b](double dt, std::size_t i, const char* name) {
+        if (dt < b.dt) b = {dt, i, name};
+      };
       for (std::size_t i = c * chunk; i < std::min(n, (c + 1) * chunk); ++i) {
-        const double h = p.smoothing_length[i];
-        double signal = p.sound_speed[i] + viscosity_.signal_term(p.sound_speed[i], scratch_.max_mu[i]);
-        if (settings_.timestep_rule == Settings::TimestepRule::selhammar_eq7) signal += p.velocity[i].norm();
-        if (signal > 0) {
-          const double dt = settings_.courant * h / signal;
-          if (dt < b.dt) b = {dt, i, 1};
-        }
-        const double a = p.acceleration[i].norm();
-        if (a > 0) {
-          const double dt = settings_.courant * std::sqrt(h / a);
-          if (dt < b.dt) b = {dt, i, 2};
-        }
-        // Cooling: an explicit step must not remove more than a fraction of u (without it, an
-        // inviscid collision can drive u negative in one step; chapter 3).
-        if constexpr (evolve_energy) {
-          if (p.energy_rate[i] < 0 && p.internal_energy[i] > 0) {
-            const double dt = settings_.courant * p.internal_energy[i] / -p.energy_rate[i];
-            if (dt < b.dt) b = {dt, i, 3};
+        if (!moves(i)) continue;
+        if constexpr (hydro) {
+          const double h = p.smoothing_length[i];
+          double signal = p.sound_speed[i];
+          terms_.for_each([&](const auto& t) {
+            if constexpr (HasSignalSpeed<std::decay_t<decltype(t)>, D>) signal += t.signal_speed(i, in);
+          });
+          if (own_speed) signal += p.velocity[i].norm();
+          if (signal > 0) consider(courant * h / signal, i, "Courant (eq 7)");
+          const double a = p.acceleration[i].norm();
+          if (a > 0) consider(courant * std::sqrt(h / a), i, "acceleration");
+          // Cooling: an explicit step must not remove more than a fraction of u (without it,
+          // an inviscid collision can drive u negative in one step; chapter 3).
+          if constexpr (evolve_energy) {
+            if (p.energy_rate[i] < 0 && p.internal_energy[i] > 0)
+              consider(courant * p.internal_energy[i] / -p.energy_rate[i], i, "cooling");
           }
+          terms_.for_each([&](const auto& t) {
+            using T = std::decay_t<decltype(t)>;
+            if constexpr (HasTimestep<T, D>) consider(t.timestep(i, in), i, T::timestep_name);
+          });
         }
+        if constexpr (External::active) consider(external_.timestep(p.position[i], courant), i, External::timestep_name);
       }
       best[c] = b;
     }
@@ -166,22 +182,17 @@ class Simulation {
     for (const Best& b : best) {
       if (b.dt < overall.dt) overall = b;
     }
-    return {criteria[overall.criterion], overall.particle, overall.dt};
+    return {overall.criterion, overall.particle, overall.dt};
   }
 
-  /// One kick-drift-kick step of at most dt_max; returns the step taken.
+  /// One step of the scene's integrator, of at most dt_max; returns the step taken.
   double step(double dt_max = std::numeric_limits<double>::infinity()) {
     TimestepLimit limit = allowed_timestep();
     if (dt_max < limit.dt) limit = {"output time", limit.particle, dt_max};
     require(std::isfinite(limit.dt) && limit.dt > 0,
             "time step: no finite positive step (all particles at rest with zero sound speed?)");
     const double dt = limit.dt;
-    kick_drift_predict(dt);
-    compute_accelerations();
-    // The second half kick starts from the half-step values, not from the prediction.
-    std::swap(particles_.velocity, velocity_half_);
-    if constexpr (evolve_energy) std::swap(particles_.internal_energy, energy_half_);
-    kick(0.5 * dt);
+    integrator_.step(*this, dt);
     check_energy("after the step");
     time_ += dt;
     ++steps_;
@@ -206,6 +217,23 @@ class Simulation {
     }
   }
 
+  // --- what an integrator may do (integrators.hpp) ------------------------------------------
+  /// Whether particle i moves (fixed boundary particles do not).
+  bool moves(std::size_t i) const { return Boundaries::moves(i, particles_); }
+  /// After particle i's position changed: wrap it into the box, apply the boundaries.
+  void drifted(std::size_t i) {
+    particles_.position[i] = box_.wrap(particles_.position[i]);
+    if constexpr (Boundaries::has_constraint) boundaries_.constrain(particles_.position[i], particles_.velocity[i]);
+  }
+  /// After particle i was kicked by dt from velocity v_before: the terms' energy bookkeeping.
+  void kicked(std::size_t i, double dt, const Vec<D>& v_before, double& u) {
+    if constexpr (TermList::template any_with_kick<D>) {
+      terms_.for_each([&](auto& t) {
+        if constexpr (HasWithKick<std::decay_t<decltype(t)>, D>) t.with_kick(i, dt, v_before, u);
+      });
+    }
+  }
+
   // --- access ------------------------------------------------------------------------------
   const Particles<D>& particles() const { return particles_; }
   Particles<D>& particles() { return particles_; }
@@ -214,43 +242,152 @@ class Simulation {
   const NeighbourSearch<D, K>& neighbour_search() const { return search_; }
   const Box<D>& box() const { return box_; }
   const Eos& eos() const { return eos_; }
-  const Viscosity& viscosity() const { return viscosity_; }
+  const TermList& terms() const { return terms_; }
+  /// Term T of the scene.
+  template <class T>
+  const T& term() const {
+    return terms_.template get<T>();
+  }
+  const External& external() const { return external_; }
+  const Gravity& gravity() const { return gravity_; }
   const Settings& settings() const { return settings_; }
+  /// The fields only some scenes have (rho-dot, div v, curl v, ...): empty when not named.
+  const DerivedFields<D>& fields() const { return fields_; }
+  /// Every field as plain arrays, as the terms see them (valid until the next step).
+  ParticleView<D> view() const {
+    const auto& p = particles_;
+    ParticleView<D> v;
+    v.x = positions_.view(box_);
+    for (int a = 0; a < D; ++a) v.v[a] = velocities_.axis(a);
+    v.h = p.smoothing_length.data();
+    v.m = p.mass.data();
+    v.u = p.internal_energy.data();
+    v.rho = p.density.data();
+    v.pressure = p.pressure.data();
+    v.c = p.sound_speed.data();
+    v.p_over_rho2 = fields_.p_over_rho2.data();
+    v.max_mu = fields_.max_mu.data();
+    v.density_rate = fields_.density_rate.data();
+    v.divergence = fields_.velocity_divergence.data();
+    for (int a = 0; a < curl_components<D>; ++a) v.curl[a] = fields_.velocity_curl[a].data();
+    return v;
+  }
+  /// The potential energy in the external potential and in self-gravity.
+  double potential_energy() const {
+    double e = 0;
+    if constexpr (External::active) {
+      for (std::size_t i = 0; i < particles_.size(); ++i)
+        e += particles_.mass[i] * external_.potential(particles_.position[i]);
+    }
+    if constexpr (Gravity::active) e += gravity_.potential_energy(particles_, box_);
+    return e;
+  }
   double time() const { return time_; }
   long steps() const { return steps_; }
   const TimestepLimit& last_limit() const { return last_limit_; }
 
  private:
-  void kick(double dt) {
-    auto& p = particles_;
-    const std::size_t n = p.size();
-#pragma omp parallel for schedule(static) if (n >= parallel_threshold)
-    for (std::size_t i = 0; i < n; ++i) {
-      p.velocity[i] += dt * p.acceleration[i];
-      if constexpr (evolve_energy) p.internal_energy[i] += dt * p.energy_rate[i];
+  // --- parts by type -------------------------------------------------------------------------
+  template <class Part>
+  void set(const Part& part) {
+    if constexpr (std::is_same_v<Part, Settings>) {
+      settings_ = part;
+    } else if constexpr (std::is_same_v<Part, Eos>) {
+      eos_ = part;
+    } else if constexpr (std::is_same_v<Part, TermList>) {
+      terms_ = part;
+    } else if constexpr (TermList::template contains<Part>) {
+      terms_.template get<Part>() = part;
+    } else if constexpr (std::is_same_v<Part, Gravity>) {
+      gravity_ = part;
+    } else if constexpr (std::is_same_v<Part, External>) {
+      external_ = part;
+    } else if constexpr (std::is_same_v<Part, Boundaries>) {
+      boundaries_ = part;
+    } else if constexpr (std::is_same_v<Part, Integrator>) {
+      integrator_ = part;
+    } else {
+      static_assert(std::is_same_v<Part, void>,
+                    "Simulation: this argument is not a part of the scene (its equation of state, one of its "
+                    "terms, Settings, its gravity, external potential, boundaries or integrator)");
     }
   }
 
-  // The first half of a step in one pass over the particles: half kick to v^{n+1/2} (kept in
-  // velocity_half_), drift, and the prediction v^{n+1/2} + a^n dt/2 that the forces at the end
-  // of the step see (left in p.velocity); the same for u.
-  void kick_drift_predict(double dt) {
+  // --- the passes ----------------------------------------------------------------------------
+  // Density, and in the same loop the equation of state and the terms' after_density hooks.
+  void density_pass() {
+    auto& p = particles_;
+    std::array<const double*, D> v;
+    for (int a = 0; a < D; ++a) v[a] = velocities_.axis(a);
+    const ParticleView<D> in = view();
+    compute_density<D, K, needs>(
+        p, search_.list(), positions_.view(box_), settings_.density,
+        [&](std::size_t i) {
+          p.pressure[i] = eos_.pressure(p.density[i], p.internal_energy[i]);
+          p.sound_speed[i] = eos_.sound_speed(p.density[i], p.internal_energy[i]);
+          fields_.p_over_rho2[i] = p.pressure[i] / (p.density[i] * p.density[i]);
+          if constexpr (TermList::template any_after_density<D>) {
+            terms_.for_each([&](auto& t) {
+              if constexpr (HasAfterDensity<std::decay_t<decltype(t)>, D>) t.after_density(i, in);
+            });
+          }
+        },
+        v, &fields_);
+  }
+
+  // The gradient pass: a second loop over the same neighbour list, for the terms that have one.
+  // Each such term sums its GradientSum over i's pairs, then finishes particle i.
+  void gradient_pass() {
+    const std::size_t n = particles_.size();
+    const ParticleView<D> in = view();
+    const NeighbourList<D>& list = search_.list();
+#pragma omp parallel for schedule(dynamic, 512) if (n >= parallel_threshold)
+    for (std::size_t i = 0; i < n; ++i) {
+      terms_.for_each([&](auto& t) {
+        using T = std::decay_t<decltype(t)>;
+        if constexpr (HasGradientPass<T, D>) {
+          typename T::template GradientSum<D> sum{};
+          for (const Neighbour& nb : list.of(i)) t.gradient_pair(sum, pair_geometry<D, K>(in, i, nb), in);
+          t.gradient_finish(i, sum, in);
+        }
+      });
+    }
+  }
+
+  // The terms' before_force hooks, particle by particle.
+  void before_force() {
+    const ParticleView<D> in = view();
+    per_particle([&](auto& t, std::size_t i) {
+      if constexpr (HasBeforeForce<std::decay_t<decltype(t)>, D>) t.before_force(i, in);
+    });
+  }
+
+  // Per-particle terms after the force pass: they add to a_i and du_i/dt.
+  void after_force() {
+    auto& p = particles_;
+    const ParticleView<D> in = view();
+    per_particle([&](auto& t, std::size_t i) {
+      if constexpr (HasAfterForce<std::decay_t<decltype(t)>, D>) {
+        double dudt = evolve_energy ? p.energy_rate[i] : 0.0;
+        t.after_force(i, in, p.acceleration[i], dudt);
+        if constexpr (evolve_energy) p.energy_rate[i] = dudt;
+      }
+    });
+  }
+
+  // Call f(term, i) for every term and every particle, in parallel over particles.
+  template <class F>
+  void per_particle(F&& f) {
+    const std::size_t n = particles_.size();
+#pragma omp parallel for schedule(static) if (n >= parallel_threshold)
+    for (std::size_t i = 0; i < n; ++i) terms_.for_each([&](auto& t) { f(t, i); });
+  }
+
+  void external_accelerations() {
     auto& p = particles_;
     const std::size_t n = p.size();
-    velocity_half_.resize(n);
-    if constexpr (evolve_energy) energy_half_.resize(n);
 #pragma omp parallel for schedule(static) if (n >= parallel_threshold)
-    for (std::size_t i = 0; i < n; ++i) {
-      const Vec<D> half_kick = 0.5 * dt * p.acceleration[i];
-      velocity_half_[i] = p.velocity[i] + half_kick;
-      p.position[i] = box_.wrap(p.position[i] + dt * velocity_half_[i]);
-      p.velocity[i] = velocity_half_[i] + half_kick;
-      if constexpr (evolve_energy) {
-        const double half_heat = 0.5 * dt * p.energy_rate[i];
-        energy_half_[i] = p.internal_energy[i] + half_heat;
-        p.internal_energy[i] = energy_half_[i] + half_heat;
-      }
-    }
+    for (std::size_t i = 0; i < n; ++i) p.acceleration[i] += external_.acceleration(p.position[i]);
   }
 
   // A NaN or infinity must never travel on: stop and name the particle.
@@ -282,14 +419,17 @@ class Simulation {
 
   Particles<D> particles_;
   Box<D> box_;
-  Eos eos_;
-  Viscosity viscosity_;
-  Settings settings_;
+  Eos eos_{};
+  TermList terms_{};
+  Gravity gravity_{};
+  External external_{};
+  Boundaries boundaries_{};
+  Integrator integrator_{};
+  Settings settings_{};
   NeighbourSearch<D, K> search_;
-  ForceScratch<D> scratch_;
-  PositionArrays<D> positions_;  // the positions one array per axis, for the passes
-  std::vector<Vec<D>> velocity_half_;  // v at the half step while the forces see the prediction
-  std::vector<double> energy_half_;    // u likewise
+  DerivedFields<D> fields_;
+  PositionArrays<D> positions_;   // the positions one array per axis, for the pair loops
+  PositionArrays<D> velocities_;  // the velocities likewise
   double time_ = 0;
   long steps_ = 0;
   TimestepLimit last_limit_;

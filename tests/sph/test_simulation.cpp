@@ -3,6 +3,7 @@
 // identical results for 1 and 2 threads, clear errors for bad input.
 #include "sph/parallel.hpp"
 #include "sph/simulation.hpp"
+#include "sph/terms/pressure.hpp"
 #include "sph/viscosity/monaghan_gingold_1983.hpp"
 
 #include <catch2/catch.hpp>
@@ -12,7 +13,12 @@
 
 namespace {
 
-using Hydro3 = sph::Physics<3, sph::Kernel<3>, sph::IdealGas, sph::MonaghanGingold1983>;
+template <int D>
+struct Hydro : sph::Scene<D> {
+  using Terms = sph::Terms<sph::PressureHernquistKatz, sph::MonaghanGingold1983>;
+};
+using Hydro3 = Hydro<3>;
+const sph::MonaghanGingold1983 standard_av{1.0, 2.0};
 
 // A periodic 3D box with a jittered lattice, random velocities (some converging, so the
 // viscosity acts) and a hot spot: all terms of the force pass are exercised.
@@ -51,7 +57,7 @@ double energy(const sph::Particles<3>& p) {
 TEST_CASE("momentum is conserved to round-off, energy to the integrator's error", "[simulation]") {
   sph::Settings settings;
   settings.smoothing = sph::SmoothingLengthRule::neighbour_number(50, 2);
-  sph::Simulation<Hydro3> sim(stirred_box(10, 7), unit_box(), sph::IdealGas(5.0 / 3.0), {1.0, 2.0}, settings);
+  sph::Simulation<Hydro3> sim(stirred_box(10, 7), unit_box(), sph::IdealGas(5.0 / 3.0), standard_av, settings);
   const sph::Vec<3> p0 = momentum(sim.particles());
   const double e0 = energy(sim.particles());
   double scale = 0;  // sum of |m v|: the scale against which round-off is judged
@@ -85,7 +91,7 @@ TEST_CASE("results are bitwise identical with 1 and 2 threads", "[simulation]") 
     sph::Settings settings;
     settings.smoothing = sph::SmoothingLengthRule::from_density(50);
     // 17^3 = 4913 particles: above sph::parallel_threshold, so two threads really share the work.
-    sph::Simulation<Hydro3> sim(stirred_box(17, 3), unit_box(), sph::IdealGas(1.4), {1.0, 2.0}, settings);
+    sph::Simulation<Hydro3> sim(stirred_box(17, 3), unit_box(), sph::IdealGas(1.4), standard_av, settings);
     for (int k = 0; k < 3; ++k) sim.step();
     omp_set_num_threads(saved);
     return sim.particles();
@@ -101,7 +107,7 @@ TEST_CASE("results are bitwise identical with 1 and 2 threads", "[simulation]") 
 }
 
 TEST_CASE("bad input stops with a message naming the problem", "[simulation]") {
-  using Hydro1 = sph::Physics<1, sph::Kernel<1>, sph::IdealGas, sph::MonaghanGingold1983>;
+  using Hydro1 = Hydro<1>;
   sph::Particles<1> p;
   for (int i = 0; i < 20; ++i) p.add(sph::Vec<1>(i * 0.1), sph::Vec<1>(0.0), 0.1, 1.0);
   sph::Box<1> open;
@@ -125,11 +131,11 @@ TEST_CASE("bad input stops with a message naming the problem", "[simulation]") {
     for (auto& h : p.smoothing_length) h = 0.12;
     sph::Settings s;
     s.smoothing = sph::SmoothingLengthRule::fixed();
-    CHECK_THROWS_WITH(sph::Simulation<Hydro1>(p, open, sph::IdealGas(1.4), {}, s), Catch::Contains("particle 20") && Catch::Contains("no neighbours"));
+    CHECK_THROWS_WITH(sph::Simulation<Hydro1>(p, open, sph::IdealGas(1.4), s), Catch::Contains("particle 20") && Catch::Contains("no neighbours"));
   }
   SECTION("more neighbours wanted than particles exist") {
     sph::Settings s;
     s.smoothing = sph::SmoothingLengthRule::neighbour_number(30);
-    CHECK_THROWS_WITH(sph::Simulation<Hydro1>(p, open, sph::IdealGas(1.4), {}, s), Catch::Contains("cannot reach"));
+    CHECK_THROWS_WITH(sph::Simulation<Hydro1>(p, open, sph::IdealGas(1.4), s), Catch::Contains("cannot reach"));
   }
 }

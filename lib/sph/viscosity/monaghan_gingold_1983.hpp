@@ -15,7 +15,9 @@
 /// \f$ \epsilon_\nu = 10^{-4} \f$.  We expose it and default to the Monaghan/Watkins value.
 
 #include "sph/error.hpp"
-#include "sph/viscosity/none.hpp"
+#include "sph/fields.hpp"
+#include "sph/pair.hpp"
+#include "sph/terms.hpp"
 
 #include <cmath>
 #include <cstdio>
@@ -24,7 +26,7 @@
 namespace sph {
 
 struct MonaghanGingold1983 {
-  static constexpr bool active = true;
+  static constexpr bool tracks_mu = true;  ///< the force pass keeps max_j mu_ij (eq 7)
   static constexpr const char* name = "Monaghan & Gingold (1983) AV";
 
   double alpha = 1.0;        ///< bulk (linear) coefficient
@@ -44,17 +46,24 @@ struct MonaghanGingold1983 {
     return s;
   }
 
-  /// Pi_ij for one pair: \f$ \bar\rho_{ij} \f$ and \f$ \bar c_{ij} \f$ are the pair means.
-  /// (Without a branch: a receding pair has mu = 0 and so Pi = 0 exactly.)
+  /// \f$ \Pi_{ij} \f$ for one pair, added to the bracket, with \f$ \bar\rho_{ij} \f$ and
+  /// \f$ \bar c_{ij} \f$ the pair means, and \f$ |\mu_{ij}| \f$ for the time step (only pairs
+  /// inside the kernel's support at \f$ \bar h_{ij} \f$ count there).  Without a branch: a
+  /// receding pair has \f$ \mu = 0 \f$ and so \f$ \Pi = 0 \f$ exactly.
   template <int D>
-  PairViscosity pair(const Pair<D>& p, double rho_bar, double c_bar) const {
+  Bracket bracket(const Pair<D>& p, const ParticleView<D>& in) const {
+    const double rho_bar = 0.5 * (in.rho[p.i] + in.rho[p.j]);
+    const double c_bar = 0.5 * (in.c[p.i] + in.c[p.j]);
     const double mu = p.rv < 0 ? p.h_bar * p.rv / (p.r2 + nu2_factor * p.h_bar * p.h_bar) : 0.0;
-    return {(-alpha * mu * c_bar + beta * mu * mu) / rho_bar, -mu};
+    return {(-alpha * mu * c_bar + beta * mu * mu) / rho_bar, p.r2 < p.support2 ? -mu : 0.0};
   }
 
   /// The viscous part of the signal speed in the time step, Selhammar eq 7:
   /// \f$ 1.2(\alpha c_i + \beta \mu_{i,\max}) \f$.
-  double signal_term(double c_i, double mu_max) const { return 1.2 * (alpha * c_i + beta * mu_max); }
+  template <int D>
+  double signal_speed(std::size_t i, const ParticleView<D>& in) const {
+    return 1.2 * (alpha * in.c[i] + beta * in.max_mu[i]);
+  }
 };
 
 }  // namespace sph

@@ -1,0 +1,30 @@
+#pragma once
+/// \file
+/// \brief No self-gravity: the default of a scene, and the interface a gravity module implements.
+///
+/// Self-gravity is not a term of the force pass: it acts between every pair of particles, not
+/// only between neighbours, and is computed by its own method (direct summation, a tree).  A
+/// gravity module provides
+///  - `add_accelerations(p, box)`: adds \f$ -\nabla\Phi_i \f$ to every p.acceleration[i];
+///  - `potential_energy(p, box)`: \f$ E_\mathrm{pot} = \tfrac12\sum_i m_i \Phi_i \f$, for the
+///    energy diagnostic;
+/// and the step calls it after the force pass.  A scene without gravity names NoGravity, and
+/// its step contains no gravity code.
+
+#include "sph/box.hpp"
+#include "sph/particles.hpp"
+
+namespace sph {
+
+struct NoGravity {
+  static constexpr const char* name = "none";
+  static constexpr bool active = false;
+  template <int D>
+  void add_accelerations(Particles<D>&, const Box<D>&) {}
+  template <int D>
+  double potential_energy(const Particles<D>&, const Box<D>&) const {
+    return 0;
+  }
+};
+
+}  // namespace sph

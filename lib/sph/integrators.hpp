@@ -1,0 +1,151 @@
+#pragma once
+/// \file
+/// \brief The time integrators: the leapfrog of Selhammar (1997) and the predictor-corrector
+/// of Watkins et al. (1996), both around one evaluation of the accelerations per step.
+///
+/// An integrator is a policy the scene names.  It owns the buffers it needs and advances the
+/// particles by one step dt through the simulation's interface for integrators:
+/// `particles()`, `moves(i)` (fixed boundary particles do not), `drifted(i)` (wrap into the box,
+/// apply the boundaries' constraint), `kicked(i, dt, v_before, u)` (the terms' energy
+/// bookkeeping) and `evaluate()` (every pass of the step at the current state).  Both
+/// integrators evaluate the accelerations once per step, so they cost the same.
+
+#include "sph/dimension.hpp"
+#include "sph/parallel.hpp"
+#include "sph/particles.hpp"
+
+#include <vector>
+
+namespace sph {
+
+/// The kick-drift-kick leapfrog.  Selhammar (1997) eq 8 is the leapfrog with velocities and
+/// energies at half steps and positions at whole steps; in its kick-drift-kick form
+/// \f[ \mathbf v^{n+1/2} = \mathbf v^n + \tfrac12\delta t\,\mathbf a^n,\quad
+///     \mathbf r^{n+1} = \mathbf r^n + \delta t\,\mathbf v^{n+1/2},\quad
+///     \mathbf v^{n+1} = \mathbf v^{n+1/2} + \tfrac12\delta t\,\mathbf a^{n+1}, \f]
+/// (and the same for u) it produces, for a constant step, exactly the same half-step
+/// velocities and whole-step positions as eq 8, but also has v and u at whole steps (for
+/// diagnostics and snapshots) and lets the step change from one step to the next.  The forces
+/// at step n+1 need v and u there; they use the predicted
+/// \f$ \mathbf v^{n+1/2} + \tfrac12\delta t\,\mathbf a^{n} \f$, as in GADGET-2 and SWIFT.  For
+/// forces that depend on positions only it is symplectic: energy errors stay bounded, and a
+/// central force conserves angular momentum to round-off.
+template <int D>
+struct Leapfrog {
+  static constexpr const char* name = "kick-drift-kick leapfrog (Selhammar eq 8)";
+
+  template <class Sim>
+  void step(Sim& sim, double dt) {
+    static_assert(Sim::D == D, "the integrator's dimension must be the scene's");
+    constexpr bool energy = Sim::evolve_energy;
+    auto& p = sim.particles();
+    const std::size_t n = p.size();
+    velocity_half_.resize(n);
+    if constexpr (energy) energy_half_.resize(n);
+    // The first half kick to v^{n+1/2} (kept in velocity_half_), the drift, and the prediction
+    // v^{n+1/2} + a^n dt/2 that the forces at the end of the step see (left in p.velocity);
+    // the same for u.  One pass over the particles.
+#pragma omp parallel for schedule(static) if (n >= parallel_threshold)
+    for (std::size_t i = 0; i < n; ++i) {
+      if (!sim.moves(i)) {
+        velocity_half_[i] = p.velocity[i];
+        if constexpr (energy) energy_half_[i] = p.internal_energy[i];
+        continue;
+      }
+      const Vec<D> half_kick = 0.5 * dt * p.acceleration[i];
+      velocity_half_[i] = p.velocity[i] + half_kick;
+      if constexpr (energy) {
+        const double half_heat = 0.5 * dt * p.energy_rate[i];
+        energy_half_[i] = p.internal_energy[i] + half_heat;
+        sim.kicked(i, 0.5 * dt, p.velocity[i], energy_half_[i]);
+        p.internal_energy[i] = energy_half_[i] + half_heat;
+      }
+      p.position[i] += dt * velocity_half_[i];
+      p.velocity[i] = velocity_half_[i] + half_kick;
+      sim.drifted(i);
+    }
+    sim.evaluate();
+    // The second half kick starts from the half-step values, not from the prediction.
+    std::swap(p.velocity, velocity_half_);
+    if constexpr (energy) std::swap(p.internal_energy, energy_half_);
+#pragma omp parallel for schedule(static) if (n >= parallel_threshold)
+    for (std::size_t i = 0; i < n; ++i) {
+      if (!sim.moves(i)) continue;
+      const Vec<D> before = p.velocity[i];
+      p.velocity[i] += 0.5 * dt * p.acceleration[i];
+      if constexpr (energy) {
+        p.internal_energy[i] += 0.5 * dt * p.energy_rate[i];
+        sim.kicked(i, 0.5 * dt, before, p.internal_energy[i]);
+      }
+    }
+  }
+
+ private:
+  std::vector<Vec<D>> velocity_half_;  // v at the half step while the forces see the prediction
+  std::vector<double> energy_half_;    // u likewise
+};
+
+/// A second-order predictor-corrector: the midpoint method, with one evaluation per step.
+/// Watkins et al. (1996, sect. 4.4) integrate with "a second order predictor-corrector with a
+/// constant timestep" and give no more; we use the midpoint form common in SPH (Monaghan 1989),
+/// [ 	ext{predict:}\quad \mathbf r^* = \mathbf r^n + 	frac12\delta t\,\mathbf v^n,\quad
+///     \mathbf v^* = \mathbf v^n + 	frac12\delta t\,\mathbf a^{n-1/2},\quad
+///     u^* = u^n + 	frac12\delta t\,\dot u^{n-1/2}; ]
+/// [ 	ext{evaluate}\quad \mathbf a^{n+1/2} = \mathbf a(\mathbf r^*, \mathbf v^*, u^*); ]
+/// [ 	ext{correct:}\quad \mathbf v^{n+1} = \mathbf v^n + \delta t\,\mathbf a^{n+1/2},\quad
+///     \mathbf r^{n+1} = \mathbf r^n + \delta t\,(\mathbf v^n + 	frac12\delta t\,\mathbf a^{n+1/2}),\quad
+///     u^{n+1} = u^n + \delta t\,\dot u^{n+1/2}. ]
+/// The predictor uses the accelerations of the previous step's midpoint, which are
+/// $ O(\delta t) $ off the ones at $ t^n $; the predicted state is then
+/// $ O(\delta t^2) $ off the true midpoint, the midpoint accelerations $ O(\delta t^2) $
+/// off, and the step's error $ O(\delta t^3) $: second order globally, with one evaluation
+/// per step (tested on an orbit: halving the step quarters the error).  Unlike the leapfrog
+/// it is not symplectic: on an orbit its energy error grows steadily with time.  After a step
+/// the particles' accelerations are those of the midpoint $ t^{n+1/2} $.
+template <int D>
+struct PredictorCorrector {
+  static constexpr const char* name = "midpoint predictor-corrector (Watkins et al. 1996)";
+
+  template <class Sim>
+  void step(Sim& sim, double dt) {
+    static_assert(Sim::D == D, "the integrator's dimension must be the scene's");
+    constexpr bool energy = Sim::evolve_energy;
+    auto& p = sim.particles();
+    const std::size_t n = p.size();
+    position_.resize(n);
+    velocity_.resize(n);
+    if constexpr (energy) energy_.resize(n);
+    // Predict the midpoint state (the start of the step kept aside).
+#pragma omp parallel for schedule(static) if (n >= parallel_threshold)
+    for (std::size_t i = 0; i < n; ++i) {
+      position_[i] = p.position[i];
+      velocity_[i] = p.velocity[i];
+      if constexpr (energy) energy_[i] = p.internal_energy[i];
+      if (!sim.moves(i)) continue;
+      p.position[i] += 0.5 * dt * p.velocity[i];
+      p.velocity[i] += 0.5 * dt * p.acceleration[i];
+      if constexpr (energy) p.internal_energy[i] += 0.5 * dt * p.energy_rate[i];
+      sim.drifted(i);
+    }
+    sim.evaluate();
+    // Correct from the start of the step with the midpoint's accelerations.
+#pragma omp parallel for schedule(static) if (n >= parallel_threshold)
+    for (std::size_t i = 0; i < n; ++i) {
+      if (!sim.moves(i)) continue;
+      const Vec<D> kick = dt * p.acceleration[i];
+      p.position[i] = position_[i] + dt * (velocity_[i] + 0.5 * kick);
+      p.velocity[i] = velocity_[i] + kick;
+      if constexpr (energy) {
+        p.internal_energy[i] = energy_[i] + dt * p.energy_rate[i];
+        sim.kicked(i, dt, velocity_[i], p.internal_energy[i]);
+      }
+      sim.drifted(i);
+    }
+  }
+
+ private:
+  std::vector<Vec<D>> position_, velocity_;  // the state at the start of the step
+  std::vector<double> energy_;
+};
+
+}  // namespace sph

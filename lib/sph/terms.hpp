@@ -1,0 +1,197 @@
+#pragma once
+/// \file
+/// \brief A term of the equations of motion, and the list of terms a scene names.
+///
+/// A **term** is one file and one type: the pressure force, an artificial viscosity, a
+/// physical viscosity, a per-particle drag.  It brings any of the following, and the step
+/// calls exactly what it brings -- a member a term does not have is never called, and a term
+/// a scene does not name is never compiled into its step (after SWIFT's split into per-particle
+/// hooks, `hydro.h`, and pure pair functions, `hydro_iact.h`):
+///
+/// | member | slot | what it does |
+/// |:--|:--|:--|
+/// | `needs` | density pass | fields summed beside rho: Needs::density_rate, velocity_divergence, velocity_curl |
+/// | `resize(n)` | set-up | allocates the term's own per-particle fields (members of the term) |
+/// | `after_density(i, view)` | density pass | per particle, right after rho_i, P_i, c_i |
+/// | `GradientSum<D>`, `gradient_pair(sum, pair, view)`, `gradient_finish(i, sum, view)` | gradient pass | a second loop over the same neighbour list |
+/// | `before_force(i, view)` | before the force pass | per particle |
+/// | `bracket(pair, view)` | force pass | adds to the symmetric bracket \f$ P_i/\rho_i^2 + P_j/\rho_j^2 + \Pi_{ij} \f$ |
+/// | `pair_acceleration(pair, view)` | force pass | a non-central pair acceleration and its heating |
+/// | `after_force(i, view, a_i, dudt_i)` | after the force pass | per-particle accelerations (Selhammar's collective term) |
+/// | `with_kick(i, dt, v_before, u)` | integrator | after each kick of particle i by dt, from velocity v_before; may change u (energy bookkeeping) |
+/// | `signal_speed(i, view)` | time step | adds to the signal speed of the Courant criterion (eq 7) |
+/// | `timestep(i, view)`, `timestep_name` | time step | a limit of its own, reported by name when it limits |
+///
+/// **The bracket.**  The momentum and energy equations of Selhammar (1997) eq 4 share one
+/// symmetric factor per pair: \f$ \mathbf a_i \mathrel{-}= m_j B_{ij} \nabla_i W_{ij} \f$ and
+/// \f$ \dot u_i \mathrel{+}= \tfrac12 m_j B_{ij}\,\mathbf v_{ij}\cdot\nabla_i W_{ij} \f$.  A term
+/// that only adds to \f$ B_{ij} \f$ is central, conserves momentum and energy by construction,
+/// and keeps the force loop a SIMD loop: a scene whose terms are all of this kind compiles to
+/// the same vectorised loop as a scene with the pressure force alone.  A term whose force is
+/// not along \f$ \mathbf r_{ij} \f$ (Watkins' Navier-Stokes viscosity) returns a
+/// PairAcceleration instead, and must make it antisymmetric itself.
+
+#include "sph/dimension.hpp"
+#include "sph/fields.hpp"
+#include "sph/pair.hpp"
+#include "sph/particles.hpp"
+
+#include <concepts>
+#include <cstddef>
+#include <tuple>
+#include <type_traits>
+
+namespace sph {
+
+/// What a bracket term adds to \f$ B_{ij} \f$ for one pair, and the \f$ |\mu_{ij}| \f$ it saw
+/// (for the time step of eq 7; zero for terms that do not track it).
+struct Bracket {
+  double value = 0;
+  double mu = 0;
+};
+
+/// A non-central acceleration of particle i by one pair, and the heating of i that goes with
+/// it.  Plain scalars (the first D of `a` are used), so SIMD lanes keep them in registers.
+struct PairAcceleration {
+  double a[3] = {0, 0, 0};
+  double heat = 0;
+};
+
+// --- what a term has (each member is optional) ---------------------------------------------
+template <class T>
+concept HasNeeds = requires { { T::needs } -> std::convertible_to<Needs>; };
+template <class T>
+concept HasResize = requires(T t, std::size_t n) { t.resize(n); };
+template <class T, int D>
+concept HasBracket = requires(const T t, const Pair<D>& pair, const ParticleView<D>& view) {
+  { t.bracket(pair, view) } -> std::same_as<Bracket>;
+};
+template <class T, int D>
+concept HasPairAcceleration = requires(const T t, const Pair<D>& pair, const ParticleView<D>& view) {
+  { t.pair_acceleration(pair, view) } -> std::same_as<PairAcceleration>;
+};
+template <class T, int D>
+concept HasGradientPass = requires(T t, typename T::template GradientSum<D>& sum, const Pair<D>& pair,
+                                   const ParticleView<D>& view, std::size_t i) {
+  t.gradient_pair(sum, pair, view);
+  t.gradient_finish(i, sum, view);
+};
+template <class T, int D>
+concept HasAfterDensity = requires(T t, std::size_t i, const ParticleView<D>& view) { t.after_density(i, view); };
+template <class T, int D>
+concept HasBeforeForce = requires(T t, std::size_t i, const ParticleView<D>& view) { t.before_force(i, view); };
+template <class T, int D>
+concept HasAfterForce = requires(T t, std::size_t i, const ParticleView<D>& view, Vec<D>& a, double& dudt) {
+  t.after_force(i, view, a, dudt);
+};
+template <class T, int D>
+concept HasWithKick = requires(T t, std::size_t i, double dt, const Vec<D>& v_before, double& u) {
+  t.with_kick(i, dt, v_before, u);
+};
+template <class T, int D>
+concept HasSignalSpeed = requires(const T t, std::size_t i, const ParticleView<D>& view) {
+  { t.signal_speed(i, view) } -> std::convertible_to<double>;
+};
+template <class T, int D>
+concept HasTimestep = requires(const T t, std::size_t i, const ParticleView<D>& view) {
+  { t.timestep(i, view) } -> std::convertible_to<double>;
+  { T::timestep_name } -> std::convertible_to<const char*>;
+};
+
+/// The fields term T asks the density pass for.
+template <class T>
+constexpr Needs needs_of() {
+  if constexpr (HasNeeds<T>) {
+    return T::needs;
+  } else {
+    return Needs::nothing;
+  }
+}
+
+/// The terms of a scene, in the order they add up (the pressure term first: sums are taken in
+/// this order, so the order is part of the result's last bits).  Each term is a value with its
+/// parameters (and its own fields), held in a tuple.
+///
+///     using Terms = sph::Terms<sph::PressureHernquistKatz, sph::MonaghanGingold1983>;
+template <class... T>
+struct Terms {
+  std::tuple<T...> parts;
+
+  Terms() = default;
+  /// The terms with their parameters, in the order of the list: `{{}, MonaghanGingold1983{1, 2}}`.
+  Terms(const T&... terms)
+    requires(sizeof...(T) > 0)
+      : parts(terms...) {}
+
+  static constexpr std::size_t count = sizeof...(T);
+  /// Every field the density pass must sum for these terms.
+  static constexpr Needs needs = (Needs::nothing | ... | needs_of<T>());
+  /// Whether U is one of the terms.
+  template <class U>
+  static constexpr bool contains = (std::is_same_v<U, T> || ...);
+  /// Whether any term has a member of the given kind, in D dimensions.
+  template <int D>
+  static constexpr bool any_bracket = (HasBracket<T, D> || ...);
+  template <int D>
+  static constexpr bool any_pair_acceleration = (HasPairAcceleration<T, D> || ...);
+  template <int D>
+  static constexpr bool any_gradient_pass = (HasGradientPass<T, D> || ...);
+  template <int D>
+  static constexpr bool any_after_density = (HasAfterDensity<T, D> || ...);
+  template <int D>
+  static constexpr bool any_before_force = (HasBeforeForce<T, D> || ...);
+  template <int D>
+  static constexpr bool any_after_force = (HasAfterForce<T, D> || ...);
+  template <int D>
+  static constexpr bool any_with_kick = (HasWithKick<T, D> || ...);
+  /// Whether any term reports \f$ \mu_{ij} \f$ (then the force pass keeps its maximum).
+  static constexpr bool tracks_mu = (requires { T::tracks_mu; } || ...);
+
+  /// Term U.
+  template <class U>
+  U& get() { return std::get<U>(parts); }
+  template <class U>
+  const U& get() const { return std::get<U>(parts); }
+
+  /// Call f(term) for every term, in order.
+  template <class F>
+  void for_each(F&& f) {
+    std::apply([&](auto&... t) { (f(t), ...); }, parts);
+  }
+  template <class F>
+  void for_each(F&& f) const {
+    std::apply([&](const auto&... t) { (f(t), ...); }, parts);
+  }
+};
+
+/// The sum of the bracket terms for one pair (in the order of the list), and the largest
+/// \f$ \mu_{ij} \f$ they report.
+template <int D, class... T>
+inline Bracket bracket_of(const Terms<T...>& terms, const Pair<D>& pair, const ParticleView<D>& view) {
+  Bracket sum;
+  terms.for_each([&](const auto& t) {
+    if constexpr (HasBracket<std::decay_t<decltype(t)>, D>) {
+      const Bracket b = t.bracket(pair, view);
+      sum.value += b.value;
+      sum.mu = std::max(sum.mu, b.mu);
+    }
+  });
+  return sum;
+}
+
+/// The sum of the non-central pair accelerations for one pair.
+template <int D, class... T>
+inline PairAcceleration pair_acceleration_of(const Terms<T...>& terms, const Pair<D>& pair,
+                                             const ParticleView<D>& view) {
+  PairAcceleration sum;
+  terms.for_each([&](const auto& t) {
+    if constexpr (HasPairAcceleration<std::decay_t<decltype(t)>, D>) {
+      const PairAcceleration a = t.pair_acceleration(pair, view);
+      for (int k = 0; k < D; ++k) sum.a[k] += a.a[k];
+      sum.heat += a.heat;
+    }
+  });
+  return sum;
+}
+
+}  // namespace sph
