@@ -87,21 +87,21 @@ struct Leapfrog {
 
 /// A second-order predictor-corrector: the midpoint method, with one evaluation per step.
 /// Watkins et al. (1996, sect. 4.4) integrate with "a second order predictor-corrector with a
-/// constant timestep" and give no more; we use the midpoint form common in SPH (Monaghan 1989),
-/// [ 	ext{predict:}\quad \mathbf r^* = \mathbf r^n + 	frac12\delta t\,\mathbf v^n,\quad
-///     \mathbf v^* = \mathbf v^n + 	frac12\delta t\,\mathbf a^{n-1/2},\quad
-///     u^* = u^n + 	frac12\delta t\,\dot u^{n-1/2}; ]
-/// [ 	ext{evaluate}\quad \mathbf a^{n+1/2} = \mathbf a(\mathbf r^*, \mathbf v^*, u^*); ]
-/// [ 	ext{correct:}\quad \mathbf v^{n+1} = \mathbf v^n + \delta t\,\mathbf a^{n+1/2},\quad
-///     \mathbf r^{n+1} = \mathbf r^n + \delta t\,(\mathbf v^n + 	frac12\delta t\,\mathbf a^{n+1/2}),\quad
-///     u^{n+1} = u^n + \delta t\,\dot u^{n+1/2}. ]
+/// constant timestep" and name no scheme; we use the midpoint form, with one evaluation a step:
+/// \f[ \text{predict:}\quad \mathbf r^* = \mathbf r^n + \tfrac12\delta t\,\mathbf v^n,\quad
+///     \mathbf v^* = \mathbf v^n + \tfrac12\delta t\,\mathbf a^{n-1/2},\quad
+///     u^* = u^n + \tfrac12\delta t\,\dot u^{n-1/2}; \f]
+/// \f[ \text{evaluate}\quad \mathbf a^{n+1/2} = \mathbf a(\mathbf r^*, \mathbf v^*, u^*); \f]
+/// \f[ \text{correct:}\quad \mathbf v^{n+1} = \mathbf v^n + \delta t\,\mathbf a^{n+1/2},\quad
+///     \mathbf r^{n+1} = \mathbf r^n + \delta t\,(\mathbf v^n + \tfrac12\delta t\,\mathbf a^{n+1/2}),\quad
+///     u^{n+1} = u^n + \delta t\,\dot u^{n+1/2}. \f]
 /// The predictor uses the accelerations of the previous step's midpoint, which are
-/// $ O(\delta t) $ off the ones at $ t^n $; the predicted state is then
-/// $ O(\delta t^2) $ off the true midpoint, the midpoint accelerations $ O(\delta t^2) $
-/// off, and the step's error $ O(\delta t^3) $: second order globally, with one evaluation
+/// \f$ O(\delta t) \f$ off the ones at \f$ t^n \f$; the predicted state is then
+/// \f$ O(\delta t^2) \f$ off the true midpoint, the midpoint accelerations \f$ O(\delta t^2) \f$
+/// off, and the step's error \f$ O(\delta t^3) \f$: second order globally, with one evaluation
 /// per step (tested on an orbit: halving the step quarters the error).  Unlike the leapfrog
 /// it is not symplectic: on an orbit its energy error grows steadily with time.  After a step
-/// the particles' accelerations are those of the midpoint $ t^{n+1/2} $.
+/// the particles' accelerations are those of the midpoint \f$ t^{n+1/2} \f$.
 template <int D>
 struct PredictorCorrector {
   static constexpr const char* name = "midpoint predictor-corrector (Watkins et al. 1996)";
