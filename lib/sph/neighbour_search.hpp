@@ -1,0 +1,474 @@
+#pragma once
+/// \file
+/// \brief The neighbour search: smoothing lengths by a rule and the neighbour list, built once
+/// per step and shared by every pass.
+///
+/// NeighbourSearch::update chooses each h by a SmoothingLengthRule (smoothing_length.hpp) from
+/// the candidates a cell grid finds within a margin beyond 2h, keeps each particle's pairs
+/// within 2h_i (detail::keep_closer, keep_closer.hpp), hands every one-sided pair
+/// (r_ij < 2h_i but >= 2h_j) to j as well, and writes the NeighbourList (neighbour_list.hpp).
+/// From step to step it reuses each particle's candidates while its neighbourhood has moved
+/// little relative to it: those members are in candidate_reuse.hpp, which this file includes
+/// at its end.
+
+#include "sph/box.hpp"
+#include "sph/cell_grid.hpp"
+#include "sph/dimension.hpp"
+#include "sph/error.hpp"
+#include "sph/keep_closer.hpp"
+#include "sph/kernel.hpp"
+#include "sph/local_motion.hpp"
+#include "sph/neighbour_list.hpp"
+#include "sph/parallel.hpp"
+#include "sph/particles.hpp"
+#include "sph/search_blocks.hpp"
+#include "sph/smoothing_length.hpp"
+
+#include <omp.h>
+
+#include <algorithm>
+#include <array>
+#include <cstddef>
+#include <cstdint>
+#include <string>
+#include <vector>
+
+namespace sph {
+
+/// Updates smoothing lengths by a rule and builds the neighbour list (the first pass of every
+/// step).  Keep one instance per scene: it reuses its buffers from step to step.
+template <int D, class K = Kernel<D>>
+class NeighbourSearch {
+ public:
+  /// Update p.smoothing_length and p.neighbour_count by `rule`, then rebuild the list.
+  /// Positions on periodic axes must lie in the box (the integrator wraps them).
+  void update(Particles<D>& p, const Box<D>& box, const SmoothingLengthRule& rule) {
+    const std::size_t n = p.size();
+    require(n > 0, "neighbour search: no particles");
+    require(n < (std::size_t{1} << 31), "neighbour search: too many particles");
+    validate_rule(rule);
+    if (rule.mode == SmoothingLengthRule::Mode::density)
+      require_positive_masses(p, "smoothing length from density");
+    // A shell count is remembered only for the set and the rule that forced it.
+    if (shell_count_.size() != n || rule.neighbours != shell_rule_.neighbours ||
+        rule.tolerance != shell_rule_.tolerance) {
+      shell_count_.assign(n, -1);
+      shell_rule_ = rule;
+    }
+    if (try_reuse(p, box, rule)) return;
+    full_search(p, box, rule);
+  }
+
+  /// Make the next update a full search (the reuse test covers motion, not particles moved or
+  /// replaced by hand; it is safe to call this after such a change).
+  void forget_candidates() {
+    reusable_ = false;
+    shell_count_.clear();
+  }
+
+  /// Updates that searched the grid (for every particle or for some), of which full searches
+  /// (every particle); updates that searched for none (all reused their candidates); and the
+  /// particle searches done in all.
+  long searches() const { return searches_; }
+  long full_searches() const { return full_searches_; }
+  long reuses() const { return reuses_; }
+  long particle_searches() const { return particle_searches_; }
+
+ private:
+  // The full search: grid, candidates within (1 + search_margin) 2h of every particle, h by the
+  // rule, the list.  It also starts the frame in which later updates reuse the candidates.
+  void full_search(Particles<D>& p, const Box<D>& box, const SmoothingLengthRule& rule) {
+    const std::size_t n = p.size();
+    initial_guess(p, box, rule);
+    // Blocks of a few thousand particles, handed to the threads as they come free: the work is
+    // not even along the particles (the gas that moves needs more), and a fixed number of
+    // blocks, whatever the thread count, keeps every result the same for any thread count.
+    const std::size_t count =
+        n < parallel_threshold ? 1 : std::clamp<std::size_t>(n / block_size, 1, 256);
+    blocks_.resize(count);
+    for (std::size_t t = 0; t < count; ++t) {
+      blocks_[t].begin = n * t / count;
+      blocks_[t].end = n * (t + 1) / count;
+      blocks_[t].candidates.clear();
+      blocks_[t].live = 0;
+    }
+    first_.assign(n, 0);
+    last_.assign(n, 0);
+    reach_.assign(n, 0.0);
+    farthest2_.assign(n, 0.0);
+    start_frame(p);
+    built_box_ = box;
+    built_mode_ = rule.mode;
+    search_again_.assign(n, 1);
+    search_flagged(p, box, rule);
+    finish_list(p, box, Kept::none);
+    reusable_ = true;
+    ++full_searches_;
+  }
+
+  // Search the grid for every particle flagged in search_again_ (from its present h), replacing
+  // its candidates; count the search.
+  void search_flagged(Particles<D>& p, const Box<D>& box, const SmoothingLengthRule& rule) {
+    grid_.build(p.position, box, cell_size(p.smoothing_length));
+    std::string error;
+    long searched = 0;
+#pragma omp parallel for schedule(dynamic, 1) reduction(+ : searched) if (blocks_.size() > 1)
+    for (std::size_t t = 0; t < blocks_.size(); ++t) {
+      try {
+        searched += search_block(p, rule, blocks_[t]);
+      } catch (const Error& e) {
+#pragma omp critical
+        if (error.empty()) error = e.what();
+      }
+    }
+    if (!error.empty()) throw Error(error);
+    ++searches_;
+    particle_searches_ += searched;
+  }
+
+  // Which pairs within 2h_i are kept already when the list is finished: none (after a full
+  // search), all (a reuse keeps them as it settles each particle, while the distances are at
+  // hand), or all but those of the particles searched again.
+  enum class Kept { none, all, all_but_searched };
+
+  // Keep the pairs within 2 max(h_i, h_j) and write the list.  `h_floor`: see find_reverse.
+  void finish_list(const Particles<D>& p, const Box<D>& box, Kept kept,
+                   const std::vector<double>* h_floor = nullptr) {
+    const PositionView<D> unwrapped = unwrapped_view();
+#pragma omp parallel for schedule(dynamic, 1) if (blocks_.size() > 1)
+    for (std::size_t t = 0; t < blocks_.size(); ++t) {
+      Block& block = blocks_[t];
+      if (kept == Kept::none) block.kept.clear(block.end - block.begin);
+      if (kept != Kept::all) {
+        // (the pairs of a particle searched again go after the others: the list finds each
+        // particle's pairs wherever they are)
+        for (std::size_t i = block.begin; i < block.end; ++i) {
+          if (kept == Kept::none || search_again_[i])
+            keep_own(block, i, refreshed(block, i, unwrapped), p.smoothing_length[i]);
+        }
+      }
+      find_reverse(p, block, unwrapped, h_floor);
+    }
+    assemble_list(p, box);
+  }
+
+ public:
+  const NeighbourList<D>& list() const { return list_; }
+  const CellGrid<D>& grid() const { return grid_; }
+
+  /// Relative margin of the candidate radius over 2h.  Candidates beyond 2h let the
+  /// neighbour-number rule move h without a second search, and let later steps reuse the
+  /// candidates while the particles have moved less than the margin (see try_reuse).
+  double search_margin = 0.2;
+
+ private:
+  // The storage of the blocks (search_blocks.hpp).
+  using Candidates = detail::Candidates;
+  using StoredCandidates = detail::StoredCandidates;
+  using KeptPairs = detail::KeptPairs;
+  using Block = detail::SearchBlock;
+
+  static CandidateSpan span_of(Candidates& c, std::size_t first, std::size_t last) {
+    return {c.index.data() + first, c.image.data() + first, c.r2.data() + first, last - first};
+  }
+
+  double cell_size(const std::vector<double>& h) const {
+    std::vector<double> sample;
+    const std::size_t step = std::max<std::size_t>(1, h.size() / 1024);
+    for (std::size_t i = 0; i < h.size(); i += step) sample.push_back(h[i]);
+    std::nth_element(sample.begin(), sample.begin() + sample.size() / 2, sample.end());
+    const double median = sample[sample.size() / 2];
+    // A cell of half the search radius visits 4-5 cells per axis but a smaller volume than
+    // cells of the full radius (2.5^D vs 3^D times the radius^D); in 1D the full radius wins.
+    const double fraction = D == 1 ? 1.0 : 0.5;
+    return fraction * K::support * median * (1.0 + search_margin);
+  }
+
+  // --- Reusing candidates from step to step: defined in candidate_reuse.hpp, which tells when
+  // a particle's candidates still serve and how a new epoch starts.
+  bool try_reuse(Particles<D>& p, const Box<D>& box, const SmoothingLengthRule& rule);
+  void start_frame(const Particles<D>& p);
+  bool advance_frame(const Particles<D>& p, const Box<D>& box, double& largest_h);
+  bool settle_from_candidates(Particles<D>& p, const SmoothingLengthRule& rule, Block& block,
+                              std::size_t i, double covered, const PositionView<D>& unwrapped);
+  PositionView<D> unwrapped_view() const;
+  CandidateSpan refreshed(Block& block, std::size_t i, const PositionView<D>& unwrapped) const;
+  static bool same_box(const Box<D>& a, const Box<D>& b);
+  void compact(Block& block);
+  void to_unwrapped_frame(Candidates& found, std::size_t i) const;
+
+  // --- Searching the grid ---------------------------------------------------------------
+
+  // Search the grid for the flagged particles of one block: h by the rule, the candidates
+  // (appended, their images in the frame of the unwrapped positions) and the radius searched.
+  long search_block(Particles<D>& p, const SmoothingLengthRule& rule, Block& block) {
+    long searched = 0;
+    Candidates& found = block.found;
+    for (std::size_t i = block.begin; i < block.end; ++i) {
+      if (!search_again_[i]) continue;
+      reach_[i] = settle_particle(p, rule, i, found);
+      if (any_wrapped_) to_unwrapped_frame(found, i);
+      block.live -= last_[i] - first_[i];
+      first_[i] = block.candidates.size();
+      block.candidates.append(found, 0, found.size());
+      last_[i] = block.candidates.size();
+      block.live += found.size();
+      ++searched;
+    }
+    if (block.candidates.size() > 2 * block.live + 4096) compact(block);
+    return searched;
+  }
+
+  // Gather the candidates of particle i within radius (the particle itself excluded).
+  // The grid hands over blocks of scanned particles with their distances; the ones within the
+  // radius are kept by writing every one and advancing the end only past the hits (about one
+  // in three: a branch would be mispredicted too often).
+  void gather(const Particles<D>& p, std::size_t i, double radius, Candidates& found) const {
+    found.clear();
+    const double radius2 = radius * radius;
+    const auto self = static_cast<std::uint32_t>(i);
+    grid_.for_each_block_within(
+        p.position[i], radius,
+        [&](const std::uint32_t* index, const double* r2, std::size_t count, Image image) {
+          found.reserve_more(count);
+          std::size_t end = found.count;
+          for (std::size_t k = 0; k < count; ++k) {
+            found.index[end] = index[k];
+            found.image[end] = image;
+            found.r2[end] = r2[k];
+            end += (r2[k] < radius2) & !(index[k] == self && image == 0);
+          }
+          found.count = end;
+        });
+  }
+
+  // Choose h_i by the rule, growing the search radius until the candidates suffice; returns
+  // the radius searched.
+  double settle_particle(Particles<D>& p, const SmoothingLengthRule& rule, std::size_t i,
+                         Candidates& all) {
+    double& h = p.smoothing_length[i];
+    double radius = K::support * h * (1.0 + search_margin);
+    const double grid_extent = std::max(grid_.extent(), K::support * h);
+    for (int attempt = 0; attempt < 64; ++attempt) {
+      gather(p, i, radius, all);
+      const CandidateSpan found = span_of(all, 0, all.size());
+      const bool settled = [&] {
+        switch (rule.mode) {
+          case SmoothingLengthRule::Mode::fixed: return true;
+          case SmoothingLengthRule::Mode::neighbour_number:
+            return settle_by_count<K>(rule, radius, found, h, shell_count_[i]);
+          case SmoothingLengthRule::Mode::density:
+            return settle_by_density<K>(p, rule, i, radius, found, h);
+        }
+        return true;
+      }();
+      if (settled) {
+        p.neighbour_count[i] = count_within<K>(found, h);
+        // A widened search (common on a lattice, where the next shell may lie beyond the first
+        // radius) keeps only the candidates within the margin of the final h: every later step
+        // refreshes each one.
+        const double wanted = K::support * h * (1.0 + search_margin);
+        if (radius > wanted) {
+          keep_within(all, wanted);
+          radius = wanted;
+        }
+        return radius;
+      }
+      // Past a few times the grid's extent a wider search finds nothing new on open axes, and
+      // only more periodic images on periodic ones: the target cannot be met sensibly.
+      if (radius > 4.0 * grid_extent) {
+        throw Error("particle " + std::to_string(i) + ": only " + std::to_string(found.size) +
+                    " other particles (periodic images included) within " + std::to_string(radius) +
+                    ", cannot reach " + std::to_string(rule.neighbours) + " neighbours");
+      }
+      radius *= 1.5;
+    }
+    throw Error("particle " + std::to_string(i) + " at " + to_string<D>(p.position[i]) +
+                ": no smoothing length found (search radius grew to " + std::to_string(radius) +
+                ")");
+  }
+
+  // Drop the candidates at or beyond `radius` (keeping the order of the rest).
+  static void keep_within(Candidates& c, double radius) {
+    const double r2max = radius * radius;
+    std::size_t end = 0;
+    for (std::size_t k = 0; k < c.count; ++k) {
+      c.index[end] = c.index[k];
+      c.image[end] = c.image[k];
+      c.r2[end] = c.r2[k];
+      end += c.r2[k] < r2max;
+    }
+    c.count = end;
+  }
+
+  // --- Writing the list -----------------------------------------------------------------
+
+  // Keep particle i's pairs with r_ij < 2h_i (appended to `kept`, images in the frame of the
+  // stored positions); returns how many.
+  int keep_own(Block& block, std::size_t i, const CandidateSpan& found, double h) {
+    KeptPairs& kept = block.kept;
+    kept.reserve_more(found.size);
+    const std::size_t count =
+        detail::keep_closer(found.index, found.image, found.r2, found.size, support2<K>(h),
+                            any_wrapped_ ? wrapped_.data() : nullptr, wrapped_[i],
+                            kept.pairs.data() + kept.used, farthest2_[i]);
+    kept.first[i - block.begin] = kept.used;
+    kept.count[i - block.begin] = static_cast<std::uint32_t>(count);
+    kept.used += count;
+    return static_cast<int>(count);
+  }
+
+  // With every h final: the kept pairs (i, j) with r_ij >= 2h_j, which j's own candidates do
+  // not give it, are handed to j.
+  //
+  // A particle whose farthest kept pair is closer than 2h_j for the smallest h_j near it has
+  // none; in gas at rest or in uniform flow that is nearly every particle.  When `h_floor` is
+  // given (the smallest h near each particle, LocalMotion::neighbourhood_min, valid for the
+  // particles not searched again), those are passed over without reading their pairs; the
+  // others first compare each 2h_j with their farthest pair.  The rest
+  // measure their pairs' distances again: between the same unwrapped positions, with the same
+  // images (translated back from the frame of the stored positions), by the same arithmetic as
+  // the refresh, so that each distance is the one that kept the pair, to the bit.  Few
+  // particles have any one-sided pair (a vectorised count finds them).
+  void find_reverse(const Particles<D>& p, Block& block, const PositionView<D>& unwrapped,
+                    const std::vector<double>* h_floor) {
+    block.reverse.clear();
+    const double* h = p.smoothing_length.data();
+    const Neighbour* kept = block.kept.pairs.data();
+    const PositionView<D> u = unwrapped;  // a private copy: its pointers stay in registers
+    const Image* wrapped = any_wrapped_ ? wrapped_.data() : nullptr;
+    for (std::size_t i = block.begin; i < block.end; ++i) {
+      if (h_floor && !search_again_[i] && farthest2_[i] < support2<K>((*h_floor)[i])) continue;
+      const std::size_t first = block.kept.first[i - block.begin],
+                        count = block.kept.count[i - block.begin];
+      const Neighbour* pairs = kept + first;
+      // Only a neighbour whose 2h_j does not reach past i's farthest pair can make a one-sided
+      // pair (a load of h_j each, before any position).
+      const double farthest2 = farthest2_[i];
+      int possible = 0;
+#pragma omp simd reduction(+ : possible)
+      for (std::size_t e = 0; e < count; ++e)
+        possible += support2<K>(h[pairs[e].index]) <= farthest2;
+      if (possible == 0) continue;
+      if (block.r2.size() < count) block.r2.resize(2 * count);
+      double* r2 = block.r2.data();
+      const Image own = wrapped_[i];
+#pragma omp simd simdlen(8) if(simd : D > 1)
+      for (std::size_t e = 0; e < count; ++e) {
+        const Image image =
+            wrapped ? subtract_images(add_images(pairs[e].image, own), wrapped[pairs[e].index])
+                    : pairs[e].image;
+        r2[e] = u.distance2(i, {pairs[e].index, image});
+      }
+      int one_sided = 0;
+#pragma omp simd reduction(+ : one_sided)
+      for (std::size_t e = 0; e < count; ++e) one_sided += r2[e] >= support2<K>(h[pairs[e].index]);
+      if (one_sided == 0) continue;
+      for (std::size_t e = 0; e < count; ++e) {
+        if (r2[e] >= support2<K>(h[pairs[e].index]))
+          block.reverse.push_back(
+              {pairs[e].index, {static_cast<std::uint32_t>(i), mirror_image<D>(pairs[e].image)}});
+      }
+    }
+  }
+
+  // A particle with no neighbour at all cannot be part of a fluid: stop and name it.
+  void require_neighbours(const Particles<D>& p) const {
+    for (std::size_t i = 0; i < p.size(); ++i) {
+      if (list_.of(i).empty()) {
+        throw Error(
+            "particle " + std::to_string(i) + " at " + to_string<D>(p.position[i]) +
+            " has no neighbours within 2h = " + std::to_string(K::support * p.smoothing_length[i]));
+      }
+    }
+  }
+
+  // Point the list at each particle's kept pairs.  A particle that also receives one-sided
+  // pairs gets its own pairs copied to a side buffer with those after them (in the order of the
+  // particles that found them), so the list is the same for any number of threads.  Stops
+  // with an error naming the first particle that has no neighbour at all.
+  void assemble_list(const Particles<D>& p, const Box<D>& box) {
+    const std::size_t n = p.size();
+    list_.first_.resize(n);
+    list_.count_.resize(n);
+    std::size_t entries = 0, lonely = n;
+#pragma omp parallel for schedule(dynamic, 1) reduction(+ : entries) reduction(min : lonely) if (blocks_.size() > 1)
+    for (std::size_t t = 0; t < blocks_.size(); ++t) {
+      const Block& b = blocks_[t];
+      for (std::size_t i = b.begin; i < b.end; ++i) {
+        const std::size_t first = b.kept.first[i - b.begin], count = b.kept.count[i - b.begin];
+        list_.first_[i] = b.kept.pairs.data() + first;
+        list_.count_[i] = static_cast<std::uint32_t>(count);
+        entries += count;
+        if (count == 0) lonely = std::min(lonely, i);
+      }
+    }
+    // The one-sided pairs, grouped by the particle that receives them, each group in the
+    // order of the particles that found them (a counting sort; blocks are in particle order).
+    std::size_t handed = 0;
+    for (const auto& b : blocks_) handed += b.reverse.size();
+    if (handed > 0) {
+      auto& received = received_;  // per particle: how many pairs it receives, then where they go
+      received.assign(n + 1, 0);
+      for (const auto& b : blocks_)
+        for (const auto& r : b.reverse) ++received[r.first + 1];
+      std::size_t side_size = 0;
+      for (std::size_t j = 0; j < n; ++j) {
+        if (received[j + 1] > 0) side_size += list_.count_[j] + received[j + 1];
+      }
+      side_.resize(side_size);
+      // Each receiving particle's own pairs first, then room for the ones it receives.
+      std::size_t at = 0;
+      for (std::size_t j = 0; j < n; ++j) {
+        const std::size_t extra = received[j + 1];
+        if (extra == 0) continue;
+        std::copy_n(list_.first_[j], list_.count_[j], side_.data() + at);
+        list_.first_[j] = side_.data() + at;
+        received[j + 1] = at + list_.count_[j];  // where the next received pair goes
+        list_.count_[j] += static_cast<std::uint32_t>(extra);
+        at += list_.count_[j];
+      }
+      for (const auto& b : blocks_)
+        for (const auto& r : b.reverse) side_[received[r.first + 1]++] = r.second;
+    }
+    list_.entries_ = entries + handed;
+    list_.box_ = box;
+    if (lonely < n) require_neighbours(p);  // (it may have received pairs since)
+  }
+
+  static constexpr std::size_t block_size = 2048;  // particles per block (about)
+  CellGrid<D> grid_;
+  std::vector<Block> blocks_;
+  NeighbourList<D> list_;
+  // Per particle: its candidates (entries first_..last_ of its block's) and the radius within
+  // which they are complete at the epoch (reach_); this update's covered radius (see try_reuse)
+  // and whether it is searched again.
+  std::vector<std::size_t> first_, last_;
+  std::vector<double> reach_, covered_;
+  std::vector<std::uint8_t> search_again_;
+  // The frame the candidates live in, since the last full search.
+  bool reusable_ = false;
+  Box<D> built_box_;
+  SmoothingLengthRule::Mode built_mode_ = SmoothingLengthRule::Mode::fixed;
+  std::vector<Vec<D>> previous_position_;         // positions at the last update
+  std::array<std::vector<double>, D> unwrapped_;  // position at the full search + displacements since
+  std::array<std::vector<double>, D> epoch_;      // unwrapped position at the start of the epoch
+  std::array<std::vector<double>, D> moved_;      // displacement since the epoch
+  std::vector<Image> wrapped_;  // periods between unwrapped and stored position, packed like an image
+  bool any_wrapped_ = false;
+  LocalMotion<D> motion_;
+  std::vector<double> h_floor_;    // the smallest h near each particle (find_reverse)
+  std::vector<double> farthest2_;  // the largest r_ij^2 among each particle's kept pairs
+  long searches_ = 0, full_searches_ = 0, reuses_ = 0, particle_searches_ = 0;
+  std::vector<std::size_t> received_;  // assemble_list: one-sided pairs per receiving particle
+  std::vector<Neighbour> side_;  // the pairs of particles that receive one-sided ones
+  // Neighbour-number rule: the count a lattice shell forced on each particle (-1: none), and
+  // the rule it was forced under.
+  std::vector<int> shell_count_;
+  SmoothingLengthRule shell_rule_;
+};
+
+}  // namespace sph
+
+// The members that reuse candidates from step to step (they need the class complete).
+#include "sph/candidate_reuse.hpp"
