@@ -1,4 +1,4 @@
-// The smoothing-length rules of lib/sph/neighbours.hpp on a uniform lattice, a random set and a
+// The smoothing-length rules of lib/sph/smoothing_length.hpp on a uniform lattice, a random set and a
 // set with a 10^6 density contrast:
 //  - neighbour number: every particle's count lies within N +- tolerance (on a lattice: the
 //    achievable count nearest N, since whole shells of neighbours sit at one distance);
