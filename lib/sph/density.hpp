@@ -8,7 +8,7 @@
 ///    \f$ m_i W(0, h_i) \f$ included;
 ///  - **gather** (Watkins et al. 1996 eq A1): \f$ \rho_i = \sum_j m_j\, W(r_{ij}, h_i) \f$.
 ///
-/// The same loop can sum, when a term of the scene asks for them (fields.hpp, Needs), the rate
+/// The same pass can sum, when a term of the scene asks for them (fields.hpp, Needs), the rate
 /// of change of that density by the continuity equation and the velocity divergence and curl,
 /// with the same masses and kernel as the density:
 /// \f[ \dot\rho_i = \sum_j w_{ij}\, \mathbf v_{ij}\cdot\nabla_i W_{ij}, \qquad
@@ -17,8 +17,13 @@
 /// with \f$ w_{ij} = \bar m_{ij} \f$ and \f$ W_{ij} = W(r_{ij}, \bar h_{ij}) \f$ (pair-averaged)
 /// or \f$ m_j \f$ and \f$ W(r_{ij}, h_i) \f$ (gather).  \f$ \dot\rho_i \f$ is then exactly the
 /// time derivative of the density sum at fixed h (Selhammar eqs 10-11 use it to tell
-/// compression from a shock), and for a linear velocity field both derivatives are those of
-/// the field wherever the kernel's first moments vanish (SPHENIX sums them in this loop too).
+/// compression from a shock).  For a linear velocity field, wherever the kernel's first moments
+/// vanish (the interior of a regular lattice), both derivatives are those of the field times
+/// the discrete normalisation of the kernel's second moment,
+/// \f$ \kappa = -\rho_i^{-1} \sum_j w_{ij} (\mathbf r_{ij})_x (\nabla_i W_{ij})_x \f$, which is 1
+/// only in the continuum limit: on cubic lattices at h = 1.3 dx it is 1 + 1.9 %, 1 + 1.1 % and
+/// 1 - 0.4 % in 1D, 2D and 3D (tests/sph/test_velocity_fields.cpp).  SPHENIX sums these fields
+/// in its density loop too.
 ///
 /// The self term can be left out (Watkins' "random, unsettled" distribution, Fig. 3a, excludes
 /// it: a random set has no particle-free zone around each particle, and with the self term the
@@ -75,19 +80,24 @@ double density_of(const Particles<D>& p, const NeighbourList<D>& list, const Pos
   return rho + (form.self_term ? m[i] * K::value(0.0, h[i]) : 0.0);
 }
 
-/// rho_i and the velocity sums of one particle: \f$ \sum_j w_{ij} \mathbf v_{ij}\cdot\nabla_i W_{ij} \f$
+/// The velocity sums of one particle: \f$ \sum_j w_{ij} \mathbf v_{ij}\cdot\nabla_i W_{ij} \f$
 /// and the components of \f$ \sum_j w_{ij} \mathbf v_{ij}\times\nabla_i W_{ij} \f$.
-struct DensityAndRates {
-  double rho = 0, rate = 0;
+struct VelocitySums {
+  double rate = 0;
   double curl[3] = {0, 0, 0};
 };
 
-/// rho_i with the velocity sums the scene needs, in one loop.  The density is computed by
-/// exactly the arithmetic of density_of (one kernel evaluation gives W and its gradient), so
-/// asking for the rates does not change rho in its last bit.
+/// The velocity sums the scene needs, for one particle, in a loop of its own beside density_of.
+/// rho is never summed here: it comes from density_of whether or not a term asks for these
+/// fields, so asking cannot change rho in its last bit.  (One loop summing both cannot promise
+/// that: the compiler vectorises and contracts the two loop bodies differently.  With GCC 12 and
+/// AVX-512, density_of's loop ends in a 4-wide vector epilogue and a combined loop in a scalar
+/// one, and products fuse into FMAs differently, so the rho of such a loop differed from
+/// density_of's in the last bit for about half the particles of a 2D or 3D set;
+/// tests/sph/test_velocity_fields.cpp.)
 template <int D, class K, Needs needs>
-DensityAndRates density_and_rates(const Particles<D>& p, const NeighbourList<D>& list, const PositionView<D>& positions,
-                                  const std::array<const double*, D>& velocities, std::size_t i, DensityForm form) {
+VelocitySums velocity_sums(const Particles<D>& p, const NeighbourList<D>& list, const PositionView<D>& positions,
+                           const std::array<const double*, D>& velocities, std::size_t i, DensityForm form) {
   constexpr bool curl = has(needs, Needs::velocity_curl) && D > 1;
   const PositionView<D> x = positions;  // private copies: their pointers stay in registers
   const std::array<const double*, D> v = velocities;
@@ -96,8 +106,8 @@ DensityAndRates density_and_rates(const Particles<D>& p, const NeighbourList<D>&
   const std::span<const Neighbour> nb = list.of(i);
   const auto count = static_cast<std::ptrdiff_t>(nb.size());
   const bool averaged = form.sum == DensityForm::Sum::pair_averaged;
-  double rho = 0, rate = 0, c0 = 0, c1 = 0, c2 = 0;
-#pragma omp simd simdlen(8) if(simd : D > 1) reduction(+ : rho, rate, c0, c1, c2)
+  double rate = 0, c0 = 0, c1 = 0, c2 = 0;
+#pragma omp simd simdlen(8) if(simd : D > 1) reduction(+ : rate, c0, c1, c2)
   for (std::ptrdiff_t k = 0; k < count; ++k) {
     const Neighbour& n = nb[static_cast<std::size_t>(k)];
     const std::size_t j = n.index;
@@ -110,12 +120,10 @@ DensityAndRates density_and_rates(const Particles<D>& p, const NeighbourList<D>&
       rv += r_ij[a] * v_ij[a];
     }
     const double w = averaged ? 0.5 * (m[i] + m[j]) : m[j];
-    const auto kernel = K::value_and_gradient_factor(std::sqrt(r2), averaged ? 0.5 * (h[i] + h[j]) : h[i]);
-    rho += w * kernel.w;
-    rate += w * kernel.g * rv;
+    const double wg = w * K::gradient_factor(std::sqrt(r2), averaged ? 0.5 * (h[i] + h[j]) : h[i]);
+    rate += wg * rv;
     if constexpr (curl) {
       // v_ij x r_ij: in 2D its z-component only.
-      const double wg = w * kernel.g;
       if constexpr (D == 2) {
         c0 += wg * (v_ij[0] * r_ij[1] - v_ij[1] * r_ij[0]);
       } else {
@@ -125,7 +133,7 @@ DensityAndRates density_and_rates(const Particles<D>& p, const NeighbourList<D>&
       }
     }
   }
-  return {rho + (form.self_term ? m[i] * K::value(0.0, h[i]) : 0.0), rate, {c0, c1, c2}};
+  return {rate, {c0, c1, c2}};
 }
 
 /// Does nothing: the default for what compute_density does after each particle's sum.
@@ -139,9 +147,10 @@ struct NoFinish {
 /// term, or a NaN upstream) is an error that names it.  `positions` are p.position one array
 /// per axis (PositionArrays); the overload below makes them.
 ///
-/// With `needs` other than Needs::nothing, the same loop also writes the fields asked for into
+/// With `needs` other than Needs::nothing, the same pass also writes the fields asked for into
 /// `fields` (density_rate, velocity_divergence, velocity_curl), from `velocities` one array
-/// per axis; without, the loop is the plain density sum and `velocities` is not read.
+/// per axis, by a second loop over each particle's neighbours (velocity_sums); without, the
+/// pass is the plain density sum and `velocities` is not read.  rho is the same in both.
 template <int D, class K = Kernel<D>, Needs needs = Needs::nothing, class Finish = NoFinish>
 void compute_density(Particles<D>& p, const NeighbourList<D>& list, const PositionView<D>& positions,
                      DensityForm form = DensityForm::selhammar(), const Finish& finish = {},
@@ -160,17 +169,14 @@ void compute_density(Particles<D>& p, const NeighbourList<D>& list, const Positi
   long bad = -1;
 #pragma omp parallel for schedule(dynamic, 512) if (n >= parallel_threshold)
   for (std::size_t i = 0; i < n; ++i) {
-    double rho;
+    const double rho = density_of<D, K>(p, list, positions, i, form);
     if constexpr (rates) {
-      const DensityAndRates sums = density_and_rates<D, K, needs>(p, list, positions, velocities, i, form);
-      rho = sums.rho;
+      const VelocitySums sums = velocity_sums<D, K, needs>(p, list, positions, velocities, i, form);
       if constexpr (has(needs, Needs::density_rate)) fields->density_rate[i] = sums.rate;
       if constexpr (has(needs, Needs::velocity_divergence)) fields->velocity_divergence[i] = -sums.rate / rho;
       if constexpr (has(needs, Needs::velocity_curl)) {
         for (int a = 0; a < curl_components<D>; ++a) fields->velocity_curl[a][i] = sums.curl[a] / rho;
       }
-    } else {
-      rho = density_of<D, K>(p, list, positions, i, form);
     }
     p.density[i] = rho;
     if (std::isfinite(rho) && rho > 0) {

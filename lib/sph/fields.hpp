@@ -6,8 +6,8 @@
 /// Particles holds what every hydrodynamic scene has (position, velocity, mass, u, h, rho, P,
 /// c, acceleration, du/dt).  A term may need more from the density loop -- the density rate
 /// of the continuity equation, the velocity divergence or curl -- and says so with its
-/// `needs` flags (terms.hpp); the step then sums exactly those, in the same loop as rho, and
-/// allocates nothing for the others.  A term's own fields (a smoothed velocity, a curl of a
+/// `needs` flags (terms.hpp); the step then sums exactly those, in the density pass beside rho,
+/// and allocates nothing for the others.  A term's own fields (a smoothed velocity, a curl of a
 /// curl) are members of the term itself.
 ///
 /// A pair function or a per-particle hook reads all of it through one ParticleView: plain

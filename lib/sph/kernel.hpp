@@ -121,18 +121,6 @@ struct Kernel {
     return sigma * power<D + 2>(inv_h) * Shape::evaluate(r * inv_h).dw_dq_over_q;
   }
 
-  /// W(r, h) and the gradient factor g from one evaluation of the shape (each computed exactly
-  /// as value() and gradient_factor() compute it, so the sums that use both agree with those
-  /// that use one, to the bit).
-  struct ValueAndGradient {
-    double w, g;
-  };
-  static ValueAndGradient value_and_gradient_factor(double r, double h) {
-    const double inv_h = 1.0 / h;
-    const KernelShape s = Shape::evaluate(r * inv_h);
-    return {sigma * power<D>(inv_h) * s.w, sigma * power<D + 2>(inv_h) * s.dw_dq_over_q};
-  }
-
   /// \f$ \nabla_i W(\mathbf r_{ij}, h) \f$ for \f$ \mathbf r_{ij} = \mathbf r_i - \mathbf r_j \f$.
   static Vec<D> gradient(const Vec<D>& r_ij, double h) {
     return gradient_factor(r_ij.norm(), h) * r_ij;
