@@ -18,7 +18,7 @@
 /// | `bracket(pair, view)` | force pass | adds to the symmetric bracket \f$ P_i/\rho_i^2 + P_j/\rho_j^2 + \Pi_{ij} \f$ |
 /// | `pair_acceleration(pair, view)` | force pass | a non-central pair acceleration and its heating |
 /// | `after_force(i, view, a_i, dudt_i)` | after the force pass | per-particle accelerations (Selhammar's collective term) |
-/// | `with_kick(i, dt, v_before, u)` | integrator | after each kick of particle i by dt, from velocity v_before; may change u (energy bookkeeping) |
+/// | `with_kick(i, dt, v_before, u)` | integrator | after each kick of particle i by dt, from velocity v_before; may change u (energy bookkeeping; called only when the gas evolves u) |
 /// | `signal_speed(i, view)` | time step | adds to the signal speed of the Courant criterion (eq 7) |
 /// | `timestep(i, view)`, `timestep_name` | time step | a limit of its own, reported by name when it limits |
 ///
