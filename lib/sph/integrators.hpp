@@ -5,8 +5,8 @@
 ///
 /// An integrator is a policy the scene names.  It owns the buffers it needs and advances the
 /// particles by one step dt through the simulation's interface for integrators:
-/// `particles()`, `moves(i)` (fixed boundary particles do not), `drifted(i)` (wrap into the box,
-/// apply the boundaries' constraint), `kicked(i, dt, v_before, u)` (the terms' energy
+/// `particles()`, `moves(i)` (fixed boundary particles do not), `drifted(i, v)` (wrap into the
+/// box, apply the boundaries' constraint to the position and to v, the velocity that carries on), `kicked(i, dt, v_before, u)` (the terms' energy
 /// bookkeeping) and `evaluate()` (every pass of the step at the current state).  Both
 /// integrators evaluate the accelerations once per step, so they cost the same.
 
@@ -61,8 +61,8 @@ struct Leapfrog {
         p.internal_energy[i] = energy_half_[i] + half_heat;
       }
       p.position[i] += dt * velocity_half_[i];
+      sim.drifted(i, velocity_half_[i]);
       p.velocity[i] = velocity_half_[i] + half_kick;
-      sim.drifted(i);
     }
     sim.evaluate();
     // The second half kick starts from the half-step values, not from the prediction.
@@ -99,9 +99,15 @@ struct Leapfrog {
 /// \f$ O(\delta t) \f$ off the ones at \f$ t^n \f$; the predicted state is then
 /// \f$ O(\delta t^2) \f$ off the true midpoint, the midpoint accelerations \f$ O(\delta t^2) \f$
 /// off, and the step's error \f$ O(\delta t^3) \f$: second order globally, with one evaluation
-/// per step (tested on an orbit: halving the step quarters the error).  Unlike the leapfrog
-/// it is not symplectic: on an orbit its energy error grows steadily with time.  After a step
-/// the particles' accelerations are those of the midpoint \f$ t^{n+1/2} \f$.
+/// per step (tested on an orbit: halving the step quarters the error).  For forces that depend
+/// on the positions only it is the drift-kick-drift leapfrog -- \f$ \mathbf r^* \f$ is a half
+/// drift, \f$ \mathbf v^{n+1} \f$ a whole kick at \f$ \mathbf r^* \f$, and
+/// \f$ \mathbf r^{n+1} = \mathbf r^* + \tfrac12\delta t\,\mathbf v^{n+1} \f$ the second half
+/// drift -- so on an orbit it is symplectic too: its energy error stays bounded and a central
+/// force conserves angular momentum to round-off (tests/sph/test_step_parts.cpp).  It differs
+/// from the kick-drift-kick leapfrog only through \f$ \mathbf v^* \f$ and \f$ u^* \f$, where
+/// the forces depend on velocities or internal energy.  After a step the particles'
+/// accelerations are those of the midpoint \f$ t^{n+1/2} \f$.
 template <int D>
 struct PredictorCorrector {
   static constexpr const char* name = "midpoint predictor-corrector (Watkins et al. 1996)";
@@ -125,7 +131,7 @@ struct PredictorCorrector {
       p.position[i] += 0.5 * dt * p.velocity[i];
       p.velocity[i] += 0.5 * dt * p.acceleration[i];
       if constexpr (energy) p.internal_energy[i] += 0.5 * dt * p.energy_rate[i];
-      sim.drifted(i);
+      sim.drifted(i, p.velocity[i]);
     }
     sim.evaluate();
     // Correct from the start of the step with the midpoint's accelerations.
@@ -139,7 +145,7 @@ struct PredictorCorrector {
         p.internal_energy[i] = energy_[i] + dt * p.energy_rate[i];
         sim.kicked(i, dt, velocity_[i], p.internal_energy[i]);
       }
-      sim.drifted(i);
+      sim.drifted(i, p.velocity[i]);
     }
   }
 

@@ -193,6 +193,12 @@ class Simulation {
             "time step: no finite positive step (all particles at rest with zero sound speed?)");
     const double dt = limit.dt;
     integrator_.step(*this, dt);
+    if constexpr (Boundaries::has_constraint) {
+      if (constraint_failed_ >= 0) {
+        const auto i = static_cast<std::size_t>(constraint_failed_);
+        throw Error("particle " + std::to_string(i) + ": " + boundaries_.describe_failure(particles_.position[i]));
+      }
+    }
     check_energy("after the step");
     time_ += dt;
     ++steps_;
@@ -220,10 +226,17 @@ class Simulation {
   // --- what an integrator may do (integrators.hpp) ------------------------------------------
   /// Whether particle i moves (fixed boundary particles do not).
   bool moves(std::size_t i) const { return Boundaries::moves(i, particles_); }
-  /// After particle i's position changed: wrap it into the box, apply the boundaries.
-  void drifted(std::size_t i) {
+  /// After particle i's position changed: wrap it into the box, apply the boundaries'
+  /// constraint to it and to `velocity`, the velocity it carries on with (the leapfrog's
+  /// half-step velocity, the predictor-corrector's new one).
+  void drifted(std::size_t i, Vec<D>& velocity) {
     particles_.position[i] = box_.wrap(particles_.position[i]);
-    if constexpr (Boundaries::has_constraint) boundaries_.constrain(particles_.position[i], particles_.velocity[i]);
+    if constexpr (Boundaries::has_constraint) {
+      if (!boundaries_.constrain(particles_.position[i], velocity)) {
+#pragma omp critical(sph_constraint)
+        if (constraint_failed_ < 0 || static_cast<long>(i) < constraint_failed_) constraint_failed_ = static_cast<long>(i);
+      }
+    }
   }
   /// After particle i was kicked by dt from velocity v_before: the terms' energy bookkeeping.
   void kicked(std::size_t i, double dt, const Vec<D>& v_before, double& u) {
@@ -433,6 +446,7 @@ class Simulation {
   double time_ = 0;
   long steps_ = 0;
   TimestepLimit last_limit_;
+  long constraint_failed_ = -1;  // the lowest particle a boundary could not bring back, if any
 };
 
 }  // namespace sph
