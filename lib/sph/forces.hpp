@@ -33,6 +33,7 @@
 
 #include <algorithm>
 #include <span>
+#include <type_traits>
 #include <vector>
 
 namespace sph {
@@ -68,17 +69,20 @@ inline Pair<D> pair_geometry(const ParticleView<D>& in, std::size_t i, const Nei
 /// \f$ -f\,\mathbf r_{ij} \f$, heating \f$ \tfrac12 f\, \mathbf r_{ij}\cdot\mathbf v_{ij} \f$), the
 /// non-central terms' acceleration and heating, and \f$ |\mu_{ij}| \f$.  (Plain scalars, so the
 /// compiler keeps them in registers across the SIMD lanes.)
+struct NoPairAcceleration {};
+template <bool with_extra>
 struct PairForce {
   double f, rv, mu;
   double r_ij[3];  // the first D are used
-  PairAcceleration extra;
+  /// The non-central part: an empty member (no storage) when no term of the scene has one.
+  [[no_unique_address]] std::conditional_t<with_extra, PairAcceleration, NoPairAcceleration> extra;
 };
 
 /// The force between particle i and one neighbour: the geometry, then every term of the scene.
 template <int D, class K, class TermList>
-inline PairForce pair_force(const ParticleView<D>& in, const TermList& terms, std::size_t i, const Neighbour& nb) {
+inline auto pair_force(const ParticleView<D>& in, const TermList& terms, std::size_t i, const Neighbour& nb) {
   const Pair<D> pr = pair_geometry<D, K>(in, i, nb);
-  PairForce out;
+  PairForce<TermList::template any_pair_acceleration<D>> out;
   const Bracket bracket = bracket_of<D>(terms, pr, in);
   // Equal and opposite: the factor m_j * bracket * g multiplies the antisymmetric r_ij.
   out.f = in.m[pr.j] * bracket.value * pr.gradient_factor;
@@ -108,7 +112,7 @@ void compute_forces(Particles<D>& p, const NeighbourList<D>& list, const Particl
     double a0 = 0, a1 = 0, a2 = 0, energy_rate = 0, max_mu = 0;
 #pragma omp simd simdlen(8) if(simd : D > 1) reduction(+ : a0, a1, a2, energy_rate) reduction(max : max_mu)
     for (std::ptrdiff_t k = 0; k < count; ++k) {
-      const PairForce pf = pair_force<D, K>(local, terms, i, nb[static_cast<std::size_t>(k)]);
+      const auto pf = pair_force<D, K>(local, terms, i, nb[static_cast<std::size_t>(k)]);
       a0 -= pf.f * pf.r_ij[0];
       if constexpr (D > 1) a1 -= pf.f * pf.r_ij[1];
       if constexpr (D > 2) a2 -= pf.f * pf.r_ij[2];

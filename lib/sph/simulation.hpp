@@ -84,6 +84,9 @@ class Simulation {
   static constexpr bool hydro = TermList::count > 0;
   static constexpr bool evolve_energy = hydro && Eos::evolves_energy;
   static constexpr Needs needs = TermList::needs;
+  static_assert(TermList::template all_recognised<D>,
+                "Simulation: a term of the scene has no member the step recognises -- check its members' "
+                "signatures against the table in sph/terms.hpp");
 
   /// The particles, the box, and any of the scene's parts in any order, each by its type: the
   /// equation of state, a term, Settings, the gravity module, the external potential, the

@@ -98,6 +98,13 @@ concept HasTimestep = requires(const T t, std::size_t i, const ParticleView<D>& 
   { T::timestep_name } -> std::convertible_to<const char*>;
 };
 
+/// Whether the step recognises at least one member of term T: a term whose members all have
+/// the wrong signature would otherwise be silently left out of the step.
+template <class T, int D>
+concept RecognisedTerm = HasNeeds<T> || HasResize<T> || HasBracket<T, D> || HasPairAcceleration<T, D> ||
+                         HasGradientPass<T, D> || HasAfterDensity<T, D> || HasBeforeForce<T, D> ||
+                         HasAfterForce<T, D> || HasWithKick<T, D> || HasSignalSpeed<T, D> || HasTimestep<T, D>;
+
 /// The fields term T asks the density pass for.
 template <class T>
 constexpr Needs needs_of() {
@@ -129,6 +136,9 @@ struct Terms {
   /// Whether U is one of the terms.
   template <class U>
   static constexpr bool contains = (std::is_same_v<U, T> || ...);
+  /// Whether the step recognises every term, in D dimensions (see RecognisedTerm).
+  template <int D>
+  static constexpr bool all_recognised = (RecognisedTerm<T, D> && ...);
   /// Whether any term has a member of the given kind, in D dimensions.
   template <int D>
   static constexpr bool any_bracket = (HasBracket<T, D> || ...);

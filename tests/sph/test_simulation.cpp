@@ -52,6 +52,17 @@ double energy(const sph::Particles<3>& p) {
   return e;
 }
 
+// A term whose bracket has the wrong signature (it returns a double, not sph::Bracket) is not
+// recognised, and a simulation with it does not compile, rather than leave it out silently.
+struct MisspelledTerm {
+  template <int D>
+  double bracket(const sph::Pair<D>&, const sph::ParticleView<D>&) const {
+    return 0;
+  }
+};
+static_assert(!sph::RecognisedTerm<MisspelledTerm, 3>);
+static_assert(sph::RecognisedTerm<sph::MonaghanGingold1983, 3> && sph::RecognisedTerm<sph::PressureHernquistKatz, 1>);
+
 }  // namespace
 
 TEST_CASE("momentum is conserved to round-off, energy to the integrator's error", "[simulation]") {
