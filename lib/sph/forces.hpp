@@ -70,22 +70,27 @@ inline Pair<D> pair_geometry(const ParticleView<D>& in, std::size_t i, const Nei
 /// non-central terms' acceleration and heating, and \f$ |\mu_{ij}| \f$.  (Plain scalars, so the
 /// compiler keeps them in registers across the SIMD lanes.)
 struct NoPairAcceleration {};
-template <bool with_extra>
+struct NoHeatingFactor {};
+template <bool with_extra, bool with_heating>
 struct PairForce {
   double f, rv, mu;
   double r_ij[3];  // the first D are used
   /// The non-central part: an empty member (no storage) when no term of the scene has one.
   [[no_unique_address]] std::conditional_t<with_extra, PairAcceleration, NoPairAcceleration> extra;
+  /// \f$ m_j H_{ij} g \f$ when a term says who is heated (else \f$ \tfrac12 f \f$ is used; no storage).
+  [[no_unique_address]] std::conditional_t<with_heating, double, NoHeatingFactor> f_heat;
 };
 
 /// The force between particle i and one neighbour: the geometry, then every term of the scene.
 template <int D, class K, class TermList>
 inline auto pair_force(const ParticleView<D>& in, const TermList& terms, std::size_t i, const Neighbour& nb) {
   const Pair<D> pr = pair_geometry<D, K>(in, i, nb);
-  PairForce<TermList::template any_pair_acceleration<D>> out;
+  constexpr bool heating = TermList::template any_heating<D>;
+  PairForce<TermList::template any_pair_acceleration<D>, heating> out;
   const Bracket bracket = bracket_of<D>(terms, pr, in);
   // Equal and opposite: the factor m_j * bracket * g multiplies the antisymmetric r_ij.
   out.f = in.m[pr.j] * bracket.value * pr.gradient_factor;
+  if constexpr (heating) out.f_heat = in.m[pr.j] * bracket.heat * pr.gradient_factor;
   out.rv = pr.rv;
   out.mu = bracket.mu;
 #pragma GCC unroll 3
@@ -116,7 +121,13 @@ void compute_forces(Particles<D>& p, const NeighbourList<D>& list, const Particl
       a0 -= pf.f * pf.r_ij[0];
       if constexpr (D > 1) a1 -= pf.f * pf.r_ij[1];
       if constexpr (D > 2) a2 -= pf.f * pf.r_ij[2];
-      if constexpr (evolve_energy) energy_rate += 0.5 * pf.f * pf.rv;
+      if constexpr (evolve_energy) {
+        if constexpr (TermList::template any_heating<D>) {
+          energy_rate += pf.f_heat * pf.rv;
+        } else {
+          energy_rate += 0.5 * pf.f * pf.rv;
+        }
+      }
       if constexpr (extra) {
         a0 += pf.extra.a[0];
         if constexpr (D > 1) a1 += pf.extra.a[1];

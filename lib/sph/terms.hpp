@@ -16,6 +16,7 @@
 /// | `GradientSum<D>`, `gradient_pair(sum, pair, view)`, `gradient_finish(i, sum, view)` | gradient pass | a second loop over the same neighbour list |
 /// | `before_force(i, view)` | before the force pass | per particle |
 /// | `bracket(pair, view)` | force pass | adds to the symmetric bracket \f$ P_i/\rho_i^2 + P_j/\rho_j^2 + \Pi_{ij} \f$ |
+/// | `heating(pair, view)` | force pass | with a bracket: the factor \f$ H_{ij} \f$ of its heating, in place of \f$ \tfrac12 B_{ij} \f$ |
 /// | `pair_acceleration(pair, view)` | force pass | a non-central pair acceleration and its heating |
 /// | `after_force(i, view, a_i, dudt_i)` | after the force pass | per-particle accelerations (Selhammar's collective term) |
 /// | `with_kick(i, dt, v_before, u)` | integrator | after each kick of particle i by dt, from velocity v_before; may change u (energy bookkeeping; called only when the gas evolves u) |
@@ -30,6 +31,12 @@
 /// the same vectorised loop as a scene with the pressure force alone.  A term whose force is
 /// not along \f$ \mathbf r_{ij} \f$ (Watkins' Navier-Stokes viscosity) returns a
 /// PairAcceleration instead, and must make it antisymmetric itself.
+///
+/// **Who is heated.**  By default the work of a bracket term is shared equally by the pair, the
+/// \f$ \tfrac12 B_{ij} \f$ above.  A term may say otherwise with `heating(pair, view)`, the
+/// factor \f$ H_{ij} \f$ in \f$ \dot u_i \mathrel{+}= m_j H_{ij}\,\mathbf v_{ij}\cdot\nabla_i W_{ij} \f$:
+/// energy is still conserved when \f$ H_{ij} + H_{ji} = B_{ij} \f$ (the pressure term whose
+/// particles each do the work of their own pressure, \f$ H_{ij} = P_i/\rho_i^2 \f$, is one).
 
 #include "sph/dimension.hpp"
 #include "sph/fields.hpp"
@@ -48,6 +55,7 @@ namespace sph {
 struct Bracket {
   double value = 0;
   double mu = 0;
+  double heat = 0;  ///< the heating factor H_ij (summed only when some term has `heating`)
 };
 
 /// A non-central acceleration of particle i by one pair, and the heating of i that goes with
@@ -65,6 +73,10 @@ concept HasResize = requires(T t, std::size_t n) { t.resize(n); };
 template <class T, int D>
 concept HasBracket = requires(const T t, const Pair<D>& pair, const ParticleView<D>& view) {
   { t.bracket(pair, view) } -> std::same_as<Bracket>;
+};
+template <class T, int D>
+concept HasHeating = requires(const T t, const Pair<D>& pair, const ParticleView<D>& view) {
+  { t.heating(pair, view) } -> std::convertible_to<double>;
 };
 template <class T, int D>
 concept HasPairAcceleration = requires(const T t, const Pair<D>& pair, const ParticleView<D>& view) {
@@ -102,6 +114,7 @@ concept HasTimestep = requires(const T t, std::size_t i, const ParticleView<D>& 
 /// the wrong signature would otherwise be silently left out of the step.
 template <class T, int D>
 concept RecognisedTerm = HasNeeds<T> || HasResize<T> || HasBracket<T, D> || HasPairAcceleration<T, D> ||
+                         HasHeating<T, D> ||
                          HasGradientPass<T, D> || HasAfterDensity<T, D> || HasBeforeForce<T, D> ||
                          HasAfterForce<T, D> || HasWithKick<T, D> || HasSignalSpeed<T, D> || HasTimestep<T, D>;
 
@@ -143,6 +156,8 @@ struct Terms {
   template <int D>
   static constexpr bool any_bracket = (HasBracket<T, D> || ...);
   template <int D>
+  static constexpr bool any_heating = (HasHeating<T, D> || ...);
+  template <int D>
   static constexpr bool any_pair_acceleration = (HasPairAcceleration<T, D> || ...);
   template <int D>
   static constexpr bool any_gradient_pass = (HasGradientPass<T, D> || ...);
@@ -174,16 +189,26 @@ struct Terms {
   }
 };
 
-/// The sum of the bracket terms for one pair (in the order of the list), and the largest
-/// \f$ \mu_{ij} \f$ they report.
+/// The sum of the bracket terms for one pair (in the order of the list), the largest
+/// \f$ \mu_{ij} \f$ they report, and -- when some term says who is heated -- the heating factor
+/// \f$ \sum H_{ij} \f$ (\f$ \tfrac12 B_{ij} \f$ for the terms that do not say).
 template <int D, class... T>
 inline Bracket bracket_of(const Terms<T...>& terms, const Pair<D>& pair, const ParticleView<D>& view) {
+  constexpr bool heating = Terms<T...>::template any_heating<D>;
   Bracket sum;
   terms.for_each([&](const auto& t) {
-    if constexpr (HasBracket<std::decay_t<decltype(t)>, D>) {
+    using Term = std::decay_t<decltype(t)>;
+    if constexpr (HasBracket<Term, D>) {
       const Bracket b = t.bracket(pair, view);
       sum.value += b.value;
       sum.mu = std::max(sum.mu, b.mu);
+      if constexpr (heating) {
+        if constexpr (HasHeating<Term, D>) {
+          sum.heat += t.heating(pair, view);
+        } else {
+          sum.heat += 0.5 * b.value;
+        }
+      }
     }
   });
   return sum;

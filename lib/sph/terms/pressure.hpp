@@ -23,6 +23,28 @@ struct PressureHernquistKatz {
   }
 };
 
+/// The same pressure force, with each particle heated by the work of its own pressure:
+/// \f[ \frac{du_i}{dt} = \frac{P_i}{\rho_i^2} \sum_j m_j\, \mathbf v_{ij}\cdot\nabla_i W_{ij}, \f]
+/// the SPH form of \f$ du/dt = (P/\rho^2)\, d\rho/dt \f$ (Monaghan 1992), instead of the
+/// symmetric \f$ \tfrac12 (P_i/\rho_i^2 + P_j/\rho_j^2) \f$ of Hernquist & Katz.  The momentum
+/// equation is the same, and total energy is conserved just as exactly (the two heating factors
+/// of a pair add up to the bracket).  The difference shows where a cold particle meets a hot
+/// one: in the symmetric form the cold particle is heated or cooled at a rate set by its hot
+/// neighbour's pressure, which can remove all its small energy in one step; here its rate is
+/// set by its own pressure, a fraction \f$ (\gamma - 1)\nabla\cdot\mathbf v \f$ of its own
+/// energy per unit time.
+struct PressureOwnWork {
+  static constexpr const char* name = "Hernquist & Katz force, own-pressure work";
+  template <int D>
+  Bracket bracket(const Pair<D>& pair, const ParticleView<D>& in) const {
+    return {in.p_over_rho2[pair.i] + in.p_over_rho2[pair.j], 0.0};
+  }
+  template <int D>
+  double heating(const Pair<D>& pair, const ParticleView<D>& in) const {
+    return in.p_over_rho2[pair.i];
+  }
+};
+
 /// Selhammar's eq 4 as printed: \f$ \bar P_{ij}/\bar\rho_{ij}^2 \f$.  Offered only to show what
 /// the misprint does (for two equal particles it is half the Hernquist & Katz bracket, so
 /// pressure forces are halved); never the default.
