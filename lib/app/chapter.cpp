@@ -117,6 +117,8 @@ CLI::Validator between(double low, double high) {
                  "in " + range);
 }
 
+int max_threads() { return std::max(64, 8 * omp_get_num_procs()); }
+
 // ---- The command line -------------------------------------------------------------------------
 
 Chapter::Chapter(std::string name, std::string title, int argc, char** argv)
@@ -133,9 +135,11 @@ Chapter::Chapter(std::string name, std::string title, int argc, char** argv)
       ->capture_default_str()
       ->type_name("DIR")
       ->group("Run options");
+  // More threads than a few per core only slow a run down, and a huge count makes the OpenMP
+  // runtime fail (a crash or a bare abort): the range is bounded, and --help says by what.
   cli_.add_option("--threads", threads_, "OpenMP threads; 0 uses every core")
       ->capture_default_str()
-      ->check(non_negative())
+      ->check(between(0, max_threads()))
       ->group("Run options");
   cli_.get_help_ptr()->group("Run options");
   cli_.formatter(std::make_shared<HelpFormatter>());

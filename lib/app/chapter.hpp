@@ -79,6 +79,9 @@ CLI::Validator at_most(double bound);
 /// Accepts numbers in the closed interval [\p low, \p high].
 CLI::Validator between(double low, double high);
 
+/// The largest `--threads` a chapter accepts: 8 per core of this machine, and at least 64.
+int max_threads();
+
 /// Accepts a value of type \p T for which \p predicate is true; otherwise the message is
 /// "<option>: <problem>, got <value>".  Example:
 /// `.check(app::require<int>([](int n) { return n % 2 == 0; }, "must be even"))`.
