@@ -37,7 +37,7 @@ struct NoBoundaries {
   void validate(const Particles<D>& p) const {
     for (std::size_t i = 0; i < p.size(); ++i) {
       if (p.kind[i] != ParticleKind::fluid) {
-        throw Error("particle " + std::to_string(i) +
+        throw Error("particle " + show(i) +
                     " is a fixed boundary particle, but the scene names no boundaries that hold "
                     "fixed particles (use sph::FixedParticles)");
       }
@@ -99,7 +99,7 @@ struct ReflectingSphere {
   ReflectingSphere() = default;
   ReflectingSphere(const Vec<D>& c, double r) : centre(c), radius(r) {
     require(c.allFinite(), "reflecting sphere: the centre must be finite");
-    require(std::isfinite(r) && r > 0, "reflecting sphere: the radius must be positive (got " + std::to_string(r) + ")");
+    require(std::isfinite(r) && r > 0, "reflecting sphere: the radius must be positive (got " + show(r) + ")");
   }
 
   static constexpr bool moves(std::size_t, const Particles<D>&) { return true; }
@@ -108,8 +108,8 @@ struct ReflectingSphere {
     NoBoundaries{}.validate(p);
     for (std::size_t i = 0; i < p.size(); ++i) {
       if ((p.position[i] - centre).norm() > radius) {
-        throw Error("reflecting sphere: particle " + std::to_string(i) + " at " + to_string<D>(p.position[i]) +
-                    " starts outside the sphere of radius " + std::to_string(radius));
+        throw Error("reflecting sphere: particle " + show(i) + " at " + to_string<D>(p.position[i]) +
+                    " starts outside the sphere of radius " + show(radius));
       }
     }
   }
@@ -137,7 +137,7 @@ struct ReflectingSphere {
   /// What went wrong when constrain() returned false.
   std::string describe_failure(const Vec<D>& x) const {
     return "reflecting sphere: the particle at " + to_string<D>(x) + " crossed the wall of radius " +
-           std::to_string(radius) + " and cannot be brought back along its path (the step is far too long for "
+           show(radius) + " and cannot be brought back along its path (the step is far too long for "
            "the wall)";
   }
 };

@@ -188,10 +188,10 @@ void compute_density(Particles<D>& p, const NeighbourList<D>& list, const Positi
   }
   if (bad >= 0) {
     const auto i = static_cast<std::size_t>(bad);
-    throw Error("density: particle " + std::to_string(i) + " at " + to_string<D>(p.position[i]) +
-                " has density " + std::to_string(p.density[i]) + " (" +
-                std::to_string(list.of(i).size()) + " neighbours, h = " +
-                std::to_string(p.smoothing_length[i]) + ")");
+    throw Error("density: particle " + show(i) + " at " + to_string<D>(p.position[i]) +
+                " has density " + show(p.density[i]) + " (" +
+                show(list.of(i).size()) + " neighbours, h = " +
+                show(p.smoothing_length[i]) + ")");
   }
 }
 

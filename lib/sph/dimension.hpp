@@ -5,6 +5,8 @@
 /// Every physics routine is a template on `int D`.  A 1D scene therefore compiles a 1D vector
 /// type (one double, no loops over unused components) and pays nothing for 3D.
 
+#include "sph/error.hpp"
+
 #include <Eigen/Core>
 
 #include <cmath>
@@ -76,7 +78,7 @@ std::string to_string(const Vec<D>& v) {
   std::string s = "(";
   for (int a = 0; a < D; ++a) {
     if (a) s += ", ";
-    s += std::to_string(v[a]);
+    s += show(v[a]);
   }
   return s + ")";
 }

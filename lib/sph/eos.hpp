@@ -20,7 +20,7 @@ struct IdealGas {
   static constexpr const char* name = "ideal gas";
 
   explicit IdealGas(double g = 5.0 / 3.0) : gamma(g) {
-    require(std::isfinite(g) && g > 1.0, "ideal gas: the adiabatic index gamma must exceed 1 (got " + std::to_string(g) + ")");
+    require(std::isfinite(g) && g > 1.0, "ideal gas: the adiabatic index gamma must exceed 1 (got " + show(g) + ")");
   }
   double pressure(double rho, double u) const { return (gamma - 1.0) * rho * u; }
   double sound_speed(double rho, double u) const { return std::sqrt(gamma * pressure(rho, u) / rho); }

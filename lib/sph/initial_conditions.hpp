@@ -266,8 +266,8 @@ void require_distinct_positions(const std::vector<Vec<D>>& points, const Box<D>&
     std::sort(order.begin(), order.end(), less);
     for (std::size_t k = 1; k < order.size(); ++k) {
       const std::size_t i = std::min(order[k - 1], order[k]), j = std::max(order[k - 1], order[k]);
-      require(points[i] != points[j], "initial conditions: particles " + std::to_string(i) + " and " +
-                                          std::to_string(j) + " coincide at " + to_string<D>(points[i]));
+      require(points[i] != points[j], "initial conditions: particles " + show(i) + " and " +
+                                          show(j) + " coincide at " + to_string<D>(points[i]));
     }
     return;
   }
@@ -278,9 +278,9 @@ void require_distinct_positions(const std::vector<Vec<D>>& points, const Box<D>&
   for (std::size_t i = 0; i < wrapped.size(); ++i) {
     grid.for_each_within(wrapped[i], min_separation, [&](std::uint32_t j, Image image, const Vec<D>&, double r2) {
       if (j == i && image == 0) return;
-      require(false, "initial conditions: particles " + std::to_string(std::min<std::size_t>(i, j)) + " and " +
-                         std::to_string(std::max<std::size_t>(i, j)) + " are " + std::to_string(std::sqrt(r2)) +
-                         " apart, closer than " + std::to_string(min_separation) + ", at " +
+      require(false, "initial conditions: particles " + show(std::min<std::size_t>(i, j)) + " and " +
+                         show(std::max<std::size_t>(i, j)) + " are " + show(std::sqrt(r2)) +
+                         " apart, closer than " + show(min_separation) + ", at " +
                          to_string<D>(points[i]));
     });
   }
@@ -296,7 +296,7 @@ template <int D>
 Particles<D> make_particles(const std::vector<Vec<D>>& points, double mass, double internal_energy = 0.0) {
   require(!points.empty(), "make_particles: no points");
   require(std::isfinite(mass) && mass > 0, "make_particles: the mass must be positive and finite (got " +
-                                               std::to_string(mass) + ")");
+                                               show(mass) + ")");
   Particles<D> p;
   p.resize(points.size());
   for (std::size_t i = 0; i < points.size(); ++i) {
@@ -356,14 +356,14 @@ MassCalibration calibrate_mass_to_density(Particles<D>& p, const NeighbourList<D
                                           DensityForm form = DensityForm::selhammar(), int max_iterations = 100,
                                           double tolerance = 1e-13) {
   require(list.particles() == p.size(), "calibrate_mass_to_density: the neighbour list is for " +
-                                            std::to_string(list.particles()) + " particles, the set has " +
-                                            std::to_string(p.size()));
+                                            show(list.particles()) + " particles, the set has " +
+                                            show(p.size()));
   const std::size_t n = p.size();
   std::vector<double> wanted(n);
   for (std::size_t i = 0; i < n; ++i) {
     wanted[i] = target(p.position[i]);
     require(std::isfinite(wanted[i]) && wanted[i] > 0, "calibrate_mass_to_density: the target density at particle " +
-                                                            std::to_string(i) + " is " + std::to_string(wanted[i]) +
+                                                            show(i) + " is " + show(wanted[i]) +
                                                             " (must be positive)");
   }
   // The largest relative error of the current density, and where it is.

@@ -136,8 +136,8 @@ template <int D>
 void require_positive_masses(const Particles<D>& p, const char* pass) {
   for (std::size_t i = 0; i < p.size(); ++i) {
     if (!(std::isfinite(p.mass[i]) && p.mass[i] > 0)) {
-      throw Error(std::string(pass) + ": particle " + std::to_string(i) + " at " +
-                  to_string<D>(p.position[i]) + " has mass " + std::to_string(p.mass[i]) +
+      throw Error(std::string(pass) + ": particle " + show(i) + " at " +
+                  to_string<D>(p.position[i]) + " has mass " + show(p.mass[i]) +
                   " (must be positive and finite)");
     }
   }

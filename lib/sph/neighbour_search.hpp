@@ -277,14 +277,14 @@ class NeighbourSearch {
       // Past a few times the grid's extent a wider search finds nothing new on open axes, and
       // only more periodic images on periodic ones: the target cannot be met sensibly.
       if (radius > 4.0 * grid_extent) {
-        throw Error("particle " + std::to_string(i) + ": only " + std::to_string(found.size) +
-                    " other particles (periodic images included) within " + std::to_string(radius) +
-                    ", cannot reach " + std::to_string(rule.neighbours) + " neighbours");
+        throw Error("particle " + show(i) + ": only " + show(found.size) +
+                    " other particles (periodic images included) within " + show(radius) +
+                    ", cannot reach " + show(rule.neighbours) + " neighbours");
       }
       radius *= 1.5;
     }
-    throw Error("particle " + std::to_string(i) + " at " + to_string<D>(p.position[i]) +
-                ": no smoothing length found (search radius grew to " + std::to_string(radius) +
+    throw Error("particle " + show(i) + " at " + to_string<D>(p.position[i]) +
+                ": no smoothing length found (search radius grew to " + show(radius) +
                 ")");
   }
 
@@ -377,8 +377,8 @@ class NeighbourSearch {
     for (std::size_t i = 0; i < p.size(); ++i) {
       if (list_.of(i).empty()) {
         throw Error(
-            "particle " + std::to_string(i) + " at " + to_string<D>(p.position[i]) +
-            " has no neighbours within 2h = " + std::to_string(K::support * p.smoothing_length[i]));
+            "particle " + show(i) + " at " + to_string<D>(p.position[i]) +
+            " has no neighbours within 2h = " + show(K::support * p.smoothing_length[i]));
       }
     }
   }

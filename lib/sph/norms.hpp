@@ -106,8 +106,8 @@ struct Tolerance {
 /// The x-component (or any axis) of a vector field, as the values of a norm.
 template <int D>
 std::vector<double> component(const std::vector<Vec<D>>& field, int axis) {
-  require(axis >= 0 && axis < D, "component: axis " + std::to_string(axis) + " in " +
-                                     std::to_string(D) + " dimensions");
+  require(axis >= 0 && axis < D, "component: axis " + show(axis) + " in " +
+                                     show(D) + " dimensions");
   std::vector<double> values(field.size());
   for (std::size_t i = 0; i < field.size(); ++i) values[i] = field[i][axis];
   return values;
@@ -120,18 +120,18 @@ template <int D>
 void require_finite_values(const std::string& quantity, const std::vector<Vec<D>>& position,
                            const std::vector<double>& value, const Selection& selection) {
   require(position.size() == value.size(),
-          quantity + ": " + std::to_string(value.size()) + " values for " +
-              std::to_string(position.size()) + " positions");
+          quantity + ": " + show(value.size()) + " values for " +
+              show(position.size()) + " positions");
   require(selection.mask.empty() || selection.mask.size() == value.size(),
-          quantity + ": selection mask has " + std::to_string(selection.mask.size()) +
-              " entries for " + std::to_string(value.size()) + " particles");
+          quantity + ": selection mask has " + show(selection.mask.size()) +
+              " entries for " + show(value.size()) + " particles");
   require(selection.axis >= 0 && selection.axis < D,
-          quantity + ": selection axis " + std::to_string(selection.axis) + " in " +
-              std::to_string(D) + " dimensions");
+          quantity + ": selection axis " + show(selection.axis) + " in " +
+              show(D) + " dimensions");
   for (std::size_t i = 0; i < value.size(); ++i) {
-    require(std::isfinite(value[i]), quantity + ": particle " + std::to_string(i) + " at " +
+    require(std::isfinite(value[i]), quantity + ": particle " + show(i) + " at " +
                                          to_string<D>(position[i]) + " has value " +
-                                         std::to_string(value[i]) + " (must be finite)");
+                                         show(value[i]) + " (must be finite)");
   }
 }
 
@@ -139,8 +139,8 @@ void require_finite_values(const std::string& quantity, const std::vector<Vec<D>
 template <int D, class Reference>
 double reference_at(const std::string& quantity, std::size_t i, const Vec<D>& x, Reference& reference) {
   const double r = reference(x);
-  require(std::isfinite(r), quantity + ": the reference is " + std::to_string(r) + " at particle " +
-                                std::to_string(i) + " at " + to_string<D>(x));
+  require(std::isfinite(r), quantity + ": the reference is " + show(r) + " at particle " +
+                                show(i) + " at " + to_string<D>(x));
   return r;
 }
 
@@ -202,7 +202,7 @@ double relative_scatter(const std::string& quantity, const std::vector<Vec<D>>& 
     if (!selection.contains<D>(i, position[i])) continue;
     const double ref = norms_detail::reference_at<D>(quantity, i, position[i], reference);
     require(ref != 0.0, quantity + ": relative scatter undefined, the reference is 0 at particle " +
-                            std::to_string(i) + " at " + to_string<D>(position[i]));
+                            show(i) + " at " + to_string<D>(position[i]));
     const double deviation = (value[i] - ref) / ref;
     sum_square += deviation * deviation;
     ++count;

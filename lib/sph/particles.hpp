@@ -85,18 +85,18 @@ struct Particles {
   /// non-negative finite internal energy.  Throws sph::Error naming the first bad particle.
   void validate() const {
     require(size() > 0, "particles: the set is empty");
-    require(kind.size() == size(), "particles: the kind array has " + std::to_string(kind.size()) + " entries for " +
-                                       std::to_string(size()) + " particles (use resize() or add())");
+    require(kind.size() == size(), "particles: the kind array has " + show(kind.size()) + " entries for " +
+                                       show(size()) + " particles (use resize() or add())");
     for (std::size_t i = 0; i < size(); ++i) {
       const bool good = position[i].allFinite() && velocity[i].allFinite() && std::isfinite(mass[i]) &&
                         mass[i] > 0 && std::isfinite(internal_energy[i]) && internal_energy[i] >= 0;
       if (good) continue;
-      const std::string who = "particle " + std::to_string(i);
+      const std::string who = "particle " + show(i);
       require(position[i].allFinite(), who + " has a non-finite position " + to_string<D>(position[i]));
       require(velocity[i].allFinite(), who + " has a non-finite velocity " + to_string<D>(velocity[i]));
       require(std::isfinite(mass[i]) && mass[i] > 0,
-              who + " has mass " + std::to_string(mass[i]) + " (must be positive and finite)");
-      throw Error(who + " has internal energy " + std::to_string(internal_energy[i]) +
+              who + " has mass " + show(mass[i]) + " (must be positive and finite)");
+      throw Error(who + " has internal energy " + show(internal_energy[i]) +
                   " (must be non-negative and finite)");
     }
   }

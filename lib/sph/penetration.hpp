@@ -63,7 +63,7 @@ struct OrderInversions {
     std::snprintf(text, sizeof text, "%zu of %zu pairs inverted (%zu adjacent), deepest %.3g", all, pairs(),
                   adjacent, deepest);
     std::string s = text;
-    if (all > 0) s += " (particle " + std::to_string(deepest_behind) + " passed " + std::to_string(deepest_ahead) + ")";
+    if (all > 0) s += " (particle " + show(deepest_behind) + " passed " + show(deepest_ahead) + ")";
     return s;
   }
 };
@@ -101,16 +101,16 @@ inline std::size_t count_inversions(std::vector<double>& s, std::vector<double>&
 template <int D>
 OrderInversions order_inversions(const std::vector<Vec<D>>& initial, const std::vector<Vec<D>>& now, const Box<D>& box,
                                  int axis = 0) {
-  require(initial.size() == now.size(), "order inversions: " + std::to_string(initial.size()) +
-                                            " initial positions for " + std::to_string(now.size()) + " particles");
-  require(axis >= 0 && axis < D, "order inversions: axis " + std::to_string(axis) + " in " + std::to_string(D) +
+  require(initial.size() == now.size(), "order inversions: " + show(initial.size()) +
+                                            " initial positions for " + show(now.size()) + " particles");
+  require(axis >= 0 && axis < D, "order inversions: axis " + show(axis) + " in " + show(D) +
                                      " dimensions");
   const std::size_t n = now.size();
   // Unwrapped present coordinates along the axis.
   std::vector<double> present(n);
   for (std::size_t i = 0; i < n; ++i) {
     require(initial[i].allFinite() && now[i].allFinite(),
-            "order inversions: particle " + std::to_string(i) + " has a non-finite position");
+            "order inversions: particle " + show(i) + " has a non-finite position");
     present[i] = initial[i][axis] + box.separation(now[i], initial[i])[axis];
   }
   // The initial order; ties (same initial coordinate) in present order, so they never count.

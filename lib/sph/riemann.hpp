@@ -131,12 +131,12 @@ struct Side {
 inline void validate_state(const GasState& w, const char* side) {
   const std::string who = std::string("Riemann solver: ") + side + " state ";
   require(std::isfinite(w.density) && std::isfinite(w.velocity) && std::isfinite(w.pressure),
-          who + "is not finite (density " + std::to_string(w.density) + ", velocity " +
-              std::to_string(w.velocity) + ", pressure " + std::to_string(w.pressure) + ")");
+          who + "is not finite (density " + show(w.density) + ", velocity " +
+              show(w.velocity) + ", pressure " + show(w.pressure) + ")");
   require(w.density != 0.0, who + "has density 0: a vacuum state given as input; this solver does not "
                                   "treat vacuum (Toro 2009 section 4.6)");
-  require(w.density > 0.0, who + "has negative density " + std::to_string(w.density));
-  require(w.pressure >= 0.0, who + "has negative pressure " + std::to_string(w.pressure));
+  require(w.density > 0.0, who + "has negative density " + show(w.density));
+  require(w.pressure >= 0.0, who + "has negative pressure " + show(w.pressure));
 }
 
 /// A number for messages, with enough digits to tell close values apart.
@@ -213,8 +213,8 @@ class RiemannSolution {
   /// The state at (x, t).  At t = 0 it is the initial data: left for x < x0, right otherwise.
   GasState sample(double x, double t) const {
     require(std::isfinite(x) && std::isfinite(t) && t >= 0.0,
-            "Riemann solution: cannot sample at x = " + std::to_string(x) + ", t = " +
-                std::to_string(t) + " (need finite x and t >= 0)");
+            "Riemann solution: cannot sample at x = " + show(x) + ", t = " +
+                show(t) + " (need finite x and t >= 0)");
     if (t == 0.0) return x < x0_ ? left_.state : right_.state;
     const double S = (x - x0_) / t;
     return S <= u_star_ ? sample_left(S) : sample_right(S);
@@ -236,7 +236,7 @@ class RiemannSolution {
   /// Check gamma, the two states and the interface position.
   static void validate(const GasState& left, const GasState& right, double gamma, double x0) {
     require(std::isfinite(gamma) && gamma > 1.0,
-            "Riemann solver: gamma = " + std::to_string(gamma) + " (must be finite and > 1)");
+            "Riemann solver: gamma = " + show(gamma) + " (must be finite and > 1)");
     require(std::isfinite(x0), "Riemann solver: interface position is not finite");
     riemann_detail::validate_state(left, "left");
     riemann_detail::validate_state(right, "right");
@@ -318,7 +318,7 @@ class RiemannSolution {
       if (change <= options.tolerance) return p;
     }
     throw Error("Riemann solver: the iteration for p* did not converge in " +
-                std::to_string(options.max_iterations) + " steps (last p = " + riemann_detail::number(p) +
+                show(options.max_iterations) + " steps (last p = " + riemann_detail::number(p) +
                 ", bracket [" + riemann_detail::number(low) + ", " + riemann_detail::number(high) +
                 "], tolerance " + riemann_detail::number(options.tolerance) + ")");
   }

@@ -199,7 +199,7 @@ class Simulation {
     if constexpr (Boundaries::has_constraint) {
       if (constraint_failed_ >= 0) {
         const auto i = static_cast<std::size_t>(constraint_failed_);
-        throw Error("particle " + std::to_string(i) + ": " + boundaries_.describe_failure(particles_.position[i]));
+        throw Error("particle " + show(i) + ": " + boundaries_.describe_failure(particles_.position[i]));
       }
     }
     check_energy("after the step");
@@ -214,12 +214,12 @@ class Simulation {
     require(std::isfinite(t_end), "run: the end time must be finite");
     const double span = t_end - time_;
     while (time_ < t_end) {
-      if (steps_ >= settings_.max_steps) throw Error("run: more than " + std::to_string(settings_.max_steps) + " steps");
+      if (steps_ >= settings_.max_steps) throw Error("run: more than " + show(settings_.max_steps) + " steps");
       const double remaining = t_end - time_;
       const double dt = step(remaining);
       if (dt < settings_.min_timestep * span && dt < remaining) {
-        throw Error("time step collapsed to " + std::to_string(dt) + " at t = " + std::to_string(time_) +
-                    " (limited by " + last_limit_.criterion + " at particle " + std::to_string(last_limit_.particle) + ")");
+        throw Error("time step collapsed to " + show(dt) + " at t = " + show(time_) +
+                    " (limited by " + last_limit_.criterion + " at particle " + show(last_limit_.particle) + ")");
       }
       if (remaining - dt <= 1e-12 * std::abs(t_end)) time_ = t_end;  // hit the output time exactly
       if (on_step) on_step(*this);
@@ -411,9 +411,9 @@ class Simulation {
     const auto& p = particles_;
     for (std::size_t i = 0; i < p.size(); ++i) {
       if (!p.acceleration[i].allFinite() || !std::isfinite(p.energy_rate[i])) {
-        throw Error("forces: particle " + std::to_string(i) + " at " + to_string<D>(p.position[i]) +
-                    " has a non-finite acceleration or energy rate (rho = " + std::to_string(p.density[i]) +
-                    ", P = " + std::to_string(p.pressure[i]) + ", h = " + std::to_string(p.smoothing_length[i]) + ")");
+        throw Error("forces: particle " + show(i) + " at " + to_string<D>(p.position[i]) +
+                    " has a non-finite acceleration or energy rate (rho = " + show(p.density[i]) +
+                    ", P = " + show(p.pressure[i]) + ", h = " + show(p.smoothing_length[i]) + ")");
       }
     }
   }
@@ -425,9 +425,9 @@ class Simulation {
       const auto& p = particles_;
       for (std::size_t i = 0; i < p.size(); ++i) {
         if (!(p.internal_energy[i] >= 0)) {
-          throw Error(std::string("energy equation: ") + when + ", particle " + std::to_string(i) + " at " +
-                      to_string<D>(p.position[i]) + " has internal energy " + std::to_string(p.internal_energy[i]) +
-                      " at t = " + std::to_string(time_) + " (step too long for the cooling rate: lower the Courant factor)");
+          throw Error(std::string("energy equation: ") + when + ", particle " + show(i) + " at " +
+                      to_string<D>(p.position[i]) + " has internal energy " + show(p.internal_energy[i]) +
+                      " at t = " + show(time_) + " (step too long for the cooling rate: lower the Courant factor)");
         }
       }
     }

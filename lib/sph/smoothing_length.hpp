@@ -74,7 +74,7 @@ inline void validate_rule(const SmoothingLengthRule& rule) {
   if (rule.mode == SmoothingLengthRule::Mode::fixed) return;
   require(std::isfinite(rule.neighbours) && rule.neighbours >= 1,
           "smoothing length: the target neighbour number must be at least 1 (got " +
-              std::to_string(rule.neighbours) + ")");
+              show(rule.neighbours) + ")");
   require(rule.tolerance >= 0 && rule.tolerance < rule.neighbours,
           "smoothing length: the neighbour tolerance must lie in [0, N)");
 }
@@ -88,7 +88,7 @@ inline void initial_guess(Particles<D>& p, const Box<D>& box, const SmoothingLen
   for (std::size_t i = 0; i < n; ++i) {
     const double h = p.smoothing_length[i];
     if (rule.mode == SmoothingLengthRule::Mode::fixed && !(std::isfinite(h) && h > 0)) {
-      throw Error("particle " + std::to_string(i) + " has smoothing length " + std::to_string(h) +
+      throw Error("particle " + show(i) + " has smoothing length " + show(h) +
                   " (fixed h must be positive)");
     }
     if (!(std::isfinite(h) && h > 0)) all_set = false;
@@ -108,7 +108,7 @@ inline void initial_guess(Particles<D>& p, const Box<D>& box, const SmoothingLen
     }
   }
   if (spread == 0) {
-    throw Error("neighbour search: all " + std::to_string(n) + " particles are at one point, " +
+    throw Error("neighbour search: all " + show(n) + " particles are at one point, " +
                 to_string<D>(lo) + ", so nothing sets a length to start h from (give the particles "
                 "distinct positions, or h)");
   }
@@ -266,10 +266,10 @@ inline bool settle_by_density(const Particles<D>& p, const SmoothingLengthRule& 
       return K::support * h <= radius;
     }
   }
-  throw Error("particle " + std::to_string(i) + " at " + to_string<D>(p.position[i]) +
+  throw Error("particle " + show(i) + " at " + to_string<D>(p.position[i]) +
               ": smoothing length from density did not converge in " +
-              std::to_string(rule.max_iterations) +
-              " iterations (last h = " + std::to_string(h_new) + ")");
+              show(rule.max_iterations) +
+              " iterations (last h = " + show(h_new) + ")");
 }
 
 }  // namespace sph

@@ -183,8 +183,8 @@ void write_snapshot(const std::string& path, const Particles<D>& p, double time,
   const std::size_t n = p.size();
   // Every written field must cover every particle.
   for (const auto* field : {&p.mass, &p.smoothing_length, &p.density, &p.internal_energy, &p.pressure}) {
-    require(field->size() == n, "snapshot " + path + ": a field has " + std::to_string(field->size()) +
-                                    " entries for " + std::to_string(n) + " particles");
+    require(field->size() == n, "snapshot " + path + ": a field has " + show(field->size()) +
+                                    " entries for " + show(n) + " particles");
   }
   require(p.velocity.size() == n, "snapshot " + path + ": velocity has the wrong size");
   splash_ascii::write_file_atomically(path, [&](std::ostream& out) {
@@ -222,7 +222,7 @@ Snapshot<D> read_snapshot(const std::string& path) {
   std::vector<std::vector<double>> rows;
   std::string line;
   for (int line_number = 1; std::getline(in, line); ++line_number) {
-    const std::string where = path + " line " + std::to_string(line_number);
+    const std::string where = path + " line " + show(line_number);
     const auto tokens = splash_ascii::split(line);
     if (tokens.empty()) continue;
     // A header line: either the labels or "# <number> <name>".
@@ -236,12 +236,12 @@ Snapshot<D> read_snapshot(const std::string& path) {
     }
     // A data row: as many numbers as labels.
     require(!labels.empty(), where + ": data before the column-label line");
-    require(tokens.size() == labels.size(), where + ": " + std::to_string(tokens.size()) +
-                                                " numbers for " + std::to_string(labels.size()) + " columns");
+    require(tokens.size() == labels.size(), where + ": " + show(tokens.size()) +
+                                                " numbers for " + show(labels.size()) + " columns");
     std::vector<double>& row = rows.emplace_back(tokens.size());
     for (std::size_t c = 0; c < tokens.size(); ++c) {
       require(splash_ascii::parse_number(tokens[c], row[c]),
-              where + ": column " + std::to_string(c + 1) + " '" + std::string(tokens[c]) + "' is not a number");
+              where + ": column " + show(c + 1) + " '" + std::string(tokens[c]) + "' is not a number");
     }
   }
   // Header values.
@@ -250,13 +250,13 @@ Snapshot<D> read_snapshot(const std::string& path) {
   snapshot.gamma = header["gamma"];
   if (header.count("dimensions")) {
     require(header["dimensions"] == D, "snapshot " + path + " is " +
-                                           std::to_string(static_cast<int>(header["dimensions"])) +
-                                           "-dimensional, read as " + std::to_string(D) + "D");
+                                           show(static_cast<int>(header["dimensions"])) +
+                                           "-dimensional, read as " + show(D) + "D");
   }
   if (header.count("npart")) {
     require(header["npart"] == static_cast<double>(rows.size()),
-            "snapshot " + path + ": header says " + std::to_string(static_cast<long>(header["npart"])) +
-                " particles, found " + std::to_string(rows.size()) + " rows");
+            "snapshot " + path + ": header says " + show(static_cast<long>(header["npart"])) +
+                " particles, found " + show(rows.size()) + " rows");
   }
   // Which column holds what.
   const auto column = [&](const std::string& label) {
@@ -267,7 +267,7 @@ Snapshot<D> read_snapshot(const std::string& path) {
   };
   if (D < 3) {
     require(std::find(labels.begin(), labels.end(), axis_name(D)) == labels.end(),
-            "snapshot " + path + " has a column '" + axis_name(D) + "': it is not " + std::to_string(D) + "D");
+            "snapshot " + path + " has a column '" + axis_name(D) + "': it is not " + show(D) + "D");
   }
   std::size_t x[D], v[D];
   for (int a = 0; a < D; ++a) {

@@ -33,8 +33,8 @@ struct PointMass {
   PointMass() = default;
   PointMass(double g, double m, const Vec<D>& at = Vec<D>::Zero(), double eps = 0.0)
       : G(g), mass(m), centre(at), softening(eps) {
-    require(std::isfinite(g) && g > 0, "point mass: G must be positive and finite (got " + std::to_string(g) + ")");
-    require(std::isfinite(m) && m > 0, "point mass: the mass must be positive and finite (got " + std::to_string(m) + ")");
+    require(std::isfinite(g) && g > 0, "point mass: G must be positive and finite (got " + show(g) + ")");
+    require(std::isfinite(m) && m > 0, "point mass: the mass must be positive and finite (got " + show(m) + ")");
     require(at.allFinite(), "point mass: the centre must be finite");
     require(std::isfinite(eps) && eps >= 0, "point mass: the softening must be non-negative");
   }
