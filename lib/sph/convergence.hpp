@@ -3,8 +3,8 @@
 /// \brief Error against run time: run a scene at a series of resolutions, time each run, measure
 /// its errors against the reference, and fit the order of convergence.
 ///
-/// This is the facility every scene with a reference solution shares (DESIGN.md, "Error against
-/// run time"): it answers "which method buys the most accuracy per CPU second?".  A *method* is
+/// This is the facility every scene with a reference solution shares, so that each chapter can
+/// answer "which method buys the most accuracy per CPU second?".  A *method* is
 /// one variant of a scene (e.g. "alpha=1, beta=2" against "alpha=0.5, beta=1"); each run of it
 /// is a RunRecord with the particle number N, the particle spacing \f$ \Delta x \f$, the
 /// wall-clock seconds and one or more errors (e.g. \f$ L_1(\rho) \f$, \f$ L_1(v) \f$).

@@ -10,9 +10,10 @@
 /// is a bulk viscosity (linear in the approach speed), the \f$ \beta \f$ term the von
 /// Neumann-Richtmyer viscosity (quadratic), which stops particles passing through each other in
 /// strong shocks.  \f$ \nu^2 = \epsilon_\nu \bar h_{ij}^2 \f$ keeps \f$ \mu \f$ finite for
-/// close pairs.  The papers differ here (NOTES.md): Monaghan and Watkins use
-/// \f$ \epsilon_\nu = 0.01 \f$; Selhammar writes \f$ \nu = 0.01h \f$, i.e.
-/// \f$ \epsilon_\nu = 10^{-4} \f$.  We expose it and default to the Monaghan/Watkins value.
+/// close pairs.  The papers differ here (see the page 'Reading the two papers',
+/// docs/papers.md): Monaghan and Watkins use \f$ \epsilon_\nu = 0.01 \f$; Selhammar writes
+/// \f$ \nu = 0.01h \f$, i.e. \f$ \epsilon_\nu = 10^{-4} \f$.  We expose it and default to
+/// the Monaghan/Watkins value.
 
 #include "sph/error.hpp"
 #include "sph/fields.hpp"
