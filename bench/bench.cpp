@@ -1,6 +1,6 @@
 // The benchmark program: what one step of each kind costs on this machine, with 1 thread and
 // with all threads.  Run it as `build/bench/bench` (or `--quick` for a smoke run).  The numbers
-// go in the issue notes and the chapters' text; timed tests are not used for this, since test
+// go in the design page and the chapters' text; timed tests are not used for this, since test
 // machines are shared and noisy.
 #include "bench_hydro.hpp"
 #if __has_include("bench_neighbours.hpp")

@@ -86,7 +86,7 @@ struct Leapfrog {
 };
 
 /// A second-order predictor-corrector: the midpoint method, with one evaluation per step.
-/// Watkins et al. (1996, sect. 4.4) integrate with "a second order predictor-corrector with a
+/// Watkins et al. (1996, Appendix A) integrate with "a second order predictor-corrector with a
 /// constant timestep" and name no scheme; we use the midpoint form, with one evaluation a step:
 /// \f[ \text{predict:}\quad \mathbf r^* = \mathbf r^n + \tfrac12\delta t\,\mathbf v^n,\quad
 ///     \mathbf v^* = \mathbf v^n + \tfrac12\delta t\,\mathbf a^{n-1/2},\quad

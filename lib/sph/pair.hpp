@@ -5,7 +5,7 @@
 /// Sign conventions (Selhammar eq 4 read with the sign of his eq 6): \f$ \mathbf r_{ij} = \mathbf r_i - \mathbf r_j \f$,
 /// \f$ \mathbf v_{ij} = \mathbf v_i - \mathbf v_j \f$; the pair approaches when
 /// \f$ \mathbf r_{ij}\cdot\mathbf v_{ij} < 0 \f$.  The kernel is evaluated at the mean smoothing
-/// length \f$ \bar h_{ij} = (h_i + h_j)/2 \f$ (Selhammar eq 1, Watkins eq A5), so
+/// length \f$ \bar h_{ij} = (h_i + h_j)/2 \f$ (Selhammar eq 1, Watkins eq A4), so
 /// \f$ \nabla_i W_{ij} = -\nabla_j W_{ji} \f$ exactly and the forces are equal and opposite.
 
 #include "sph/dimension.hpp"
