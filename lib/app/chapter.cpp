@@ -128,6 +128,9 @@ Chapter::Chapter(std::string name, std::string title, int argc, char** argv)
       argv_(argv),
       cli_(title_, name_),
       output_arg_((std::filesystem::path(SPH_FIGURES_DIR) / name_).string()) {
+  // Line by line, even into a file or a pipe: a run that is stopped keeps every line it printed
+  // (the chapters print a few hundred lines, so the cost is nil).
+  std::setvbuf(stdout, nullptr, _IOLBF, 0);
   // Set up the options every chapter shares.
   cli_.add_flag("--quick", quick_, "reduced resolution that runs in seconds (used by the tests)")
       ->group("Run options");
