@@ -59,6 +59,17 @@ Vec<D> total_momentum(const Particles<D>& p) {
   return sum;
 }
 
+/// \f$ \sum_i m_i |\mathbf v_i| \f$: the scale against which a change of the total momentum is
+/// judged.  In a shock tube at rest the total momentum starts at zero and should stay there, so
+/// no relative change can be formed; what round-off allows is a fraction \f$ \sim 10^{-16} \f$
+/// of the momenta that are being added up, and this is their sum.
+template <int D>
+double momentum_scale(const Particles<D>& p) {
+  double sum = 0;
+  for (std::size_t i = 0; i < p.size(); ++i) sum += p.mass[i] * p.velocity[i].norm();
+  return sum;
+}
+
 /// \f$ \mathbf R = \sum_i m_i \mathbf r_i / \sum_i m_i \f$; an error for zero total mass.
 template <int D>
 Vec<D> centre_of_mass(const Particles<D>& p) {

@@ -188,6 +188,14 @@ TEST_CASE("diagnostics: totals of two particles", "[diagnostics]") {
   CHECK(t.centre_of_mass.isApprox(Vec<2>(2, 0)));
 }
 
+TEST_CASE("diagnostics: the momentum scale adds the momenta without their directions",
+          "[diagnostics]") {
+  const auto p = two_particles();
+  CHECK(sph::momentum_scale(p) == Approx(1 * 1 + 2 * 2));
+  CHECK(sph::momentum_scale(p) >= sph::total_momentum(p).norm());
+  CHECK(sph::momentum_scale(sph::Particles<2>{}) == 0.0);
+}
+
 TEST_CASE("diagnostics: check_finite names the pass, the particle and the field", "[diagnostics]") {
   auto p = two_particles();
   CHECK_NOTHROW(sph::check_all_finite(p, "initial conditions"));

@@ -1,0 +1,143 @@
+#pragma once
+/// \file
+/// \brief app::run_shock_tube: build a shock tube, integrate it to a given time, and keep what
+/// the chapters measure of it -- the particles, the exact solution, the cost and the two
+/// conservation checks.
+///
+/// Chapters 3 and 4 run dozens of shock tubes, with different schemes, dimensions, starts and
+/// smoothing-length rules.  Each run is the same few steps: build the tube
+/// (sph::make_shock_tube), hand it to a simulation of the chosen scene with an ideal gas of the
+/// tube's \f$ \gamma \f$, integrate with a progress line, and measure the totals before and
+/// after.  They live here once:
+///
+/// \code
+/// template <int D>
+/// struct ViscousGas : sph::Scene<D> {
+///   using Terms = sph::Terms<sph::PressureHernquistKatz, sph::MonaghanGingold1983>;
+/// };
+/// const auto run = app::run_shock_tube<ViscousGas<1>>(
+///     sph::ShockTubeSetup::sod(), sph::SmoothingLengthRule::from_density(4),
+///     {{}, sph::MonaghanGingold1983(1, 2)}, {.t_end = 0.2, .label = "Sod 1D"});
+/// const auto errors = sph::shock_tube_errors(run.particles, run.exact, 0.2);
+/// \endcode
+///
+/// The wall time is that of the integration alone.  Building the tube -- in 2D and 3D that
+/// includes settling each side to a glass -- is not part of what a scheme costs.
+///
+/// declare_tube_states makes the tube's two states options of a chapter, so that a reader can
+/// run any Riemann problem through the same program.
+///
+/// Header-only, like the other shared pieces of lib/app that use lib/sph.
+
+#include "app/chapter.hpp"
+#include "app/progress.hpp"
+#include "app/stopwatch.hpp"
+#include "sph/diagnostics.hpp"
+#include "sph/setups/shock_tube.hpp"
+#include "sph/simulation.hpp"
+
+#include <cmath>
+#include <string>
+
+namespace app {
+
+/// What a shock-tube run prints while it runs.
+enum class RunReport {
+  none,           ///< nothing
+  live,           ///< a progress line on a terminal (standard error), cleared at the end
+  live_and_final  ///< the same, and a one-line report on standard output at the end
+};
+
+/// How a shock tube is integrated and reported.
+struct TubeRunOptions {
+  double t_end = 0.2;                 ///< the run stops at this time
+  double courant = 0.3;               ///< \f$ \varepsilon \f$ of Selhammar's eq 7
+  std::string label = "shock tube";   ///< names the run in the progress line and TubeRun::name
+  RunReport report = RunReport::live;
+};
+
+/// What a chapter keeps of one run.
+template <int D>
+struct TubeRun {
+  std::string name;                ///< the label it ran under
+  sph::Particles<D> particles;     ///< at the end time
+  sph::RiemannSolution exact;      ///< the Riemann problem of the tube's two states
+  int in_window = 0;               ///< particles in the window \f$ |x| \le 0.5 \f$ at t = 0
+  long steps = 0;                  ///< time steps taken
+  double seconds = 0;              ///< wall time of the integration
+  double energy_change = 0;        ///< \f$ |E(t) - E(0)|/E(0) \f$, E kinetic plus thermal
+  /// \f$ |\mathbf P(t) - \mathbf P(0)| / \sum_i m_i|\mathbf v_i(t)| \f$, see sph::momentum_scale
+  double momentum_drift = 0;
+  std::string limit;               ///< what limited the last full time step, e.g. "Courant (eq 7)"
+};
+
+/// Builds the tube of \p setup with the smoothing-length rule \p rule, integrates it to
+/// `options.t_end` with the scene \p Scene (its terms given by \p terms, an ideal gas of the
+/// tube's \f$ \gamma \f$, the Courant factor of the options) and returns the final state and
+/// what was measured on the way.  Errors of the simulation (a time step that collapses, a
+/// non-finite force) propagate as sph::Error.
+template <class Scene>
+TubeRun<Scene::D> run_shock_tube(const sph::ShockTubeSetup& setup,
+                                 const sph::SmoothingLengthRule& rule,
+                                 const typename Scene::Terms& terms,
+                                 const TubeRunOptions& options = {}) {
+  constexpr int D = Scene::D;
+  const sph::ShockTube<D> tube = sph::make_shock_tube<D, typename Scene::Kernel>(setup, rule);
+  TubeRun<D> run;
+  run.name = options.label;
+  run.exact = tube.exact;
+  const sph::Selection window = sph::shock_tube_window();
+  for (std::size_t i = 0; i < tube.particles.size(); ++i) {
+    run.in_window += window.contains<D>(i, tube.particles.position[i]);
+  }
+
+  sph::Settings settings;
+  settings.smoothing = rule;
+  settings.courant = options.courant;
+  const Stopwatch clock;
+  sph::Simulation<Scene> sim(tube.particles, tube.box, sph::IdealGas(setup.gamma), terms, settings);
+  const auto energy = [](const sph::Particles<D>& p) {
+    return sph::kinetic_energy(p) + sph::thermal_energy(p);
+  };
+  const double energy_before = energy(sim.particles());
+  const sph::Vec<D> momentum_before = sph::total_momentum(sim.particles());
+
+  ProgressDisplay display = ProgressDisplay::automatic();
+  if (options.report != RunReport::live_and_final) display.report = nullptr;
+  if (options.report == RunReport::none) display.live = nullptr;
+  Progress progress(options.t_end, options.label, display);
+  sim.run_until(options.t_end, [&](const sph::Simulation<Scene>& s) {
+    progress.update(s.steps(), s.time(), s.last_limit().dt);
+    if (s.last_limit().criterion != "output time") run.limit = s.last_limit().criterion;
+  });
+  progress.finish();
+
+  run.particles = sim.particles();
+  run.steps = sim.steps();
+  run.seconds = clock.seconds();
+  run.energy_change = std::abs(energy(run.particles) - energy_before) / energy_before;
+  const sph::Vec<D> momentum_change = sph::total_momentum(run.particles) - momentum_before;
+  run.momentum_drift = momentum_change.norm() / sph::momentum_scale(run.particles);
+  return run;
+}
+
+/// Declares the two states of a tube and its \f$ \gamma \f$ as options of \p chapter, bound to
+/// \p setup: `--rho-left`, `--p-left`, `--v-left`, `--v-right`, `--rho-right`, `--p-right` and
+/// `--gamma`, with the defaults \p setup has.  Densities and pressures must be positive and
+/// \f$ \gamma \f$ above one; two states that fly apart into a vacuum are refused later, by the
+/// exact solver, with a message that says so.
+inline void declare_tube_states(Chapter& chapter, sph::ShockTubeSetup& setup) {
+  chapter.parameter("--rho-left", setup.left.density, "shock tube: density on the left")
+      .check(positive());
+  chapter.parameter("--p-left", setup.left.pressure, "shock tube: pressure on the left")
+      .check(positive());
+  chapter.parameter("--v-left", setup.left.velocity, "shock tube: velocity on the left");
+  chapter.parameter("--v-right", setup.right.velocity, "shock tube: velocity on the right");
+  chapter.parameter("--rho-right", setup.right.density, "shock tube: density on the right")
+      .check(positive());
+  chapter.parameter("--p-right", setup.right.pressure, "shock tube: pressure on the right")
+      .check(positive());
+  chapter.parameter("--gamma", setup.gamma, "adiabatic index").check(greater_than(1.0));
+}
+
+}  // namespace app
