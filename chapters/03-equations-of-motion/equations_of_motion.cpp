@@ -73,10 +73,12 @@
 /// \f$ \mathbf v_{ij} = \mathbf v_i - \mathbf v_j \f$.  The kernel gradient is
 /// \f$ \nabla_i W_{ij} = W'(r_{ij})\,\mathbf r_{ij}/r_{ij} \f$ with \f$ W' < 0 \f$, so it points
 /// from i towards j; the minus sign in front of the sum then pushes i *away* from j, as a
-/// pressure must.  Selhammar prints \f$ \mathbf v_{ij} = \mathbf v_j - \mathbf v_i \f$ in eq 4,
-/// which contradicts his own eq 6 (where an approaching pair has \f$ \mathbf r_{ij}\cdot
-/// \mathbf v_{ij} < 0 \f$) and would make a compressed gas cool; we use
-/// \f$ \mathbf v_i - \mathbf v_j \f$ throughout.
+/// pressure must.  Selhammar prints \f$ \mathbf v_{ij} = \mathbf v_j - \mathbf v_i \f$ in eq 4
+/// (with a minus sign in front of its energy equation, so that the two together still heat a
+/// compressed gas), which contradicts his own eq 6, where an approaching pair has
+/// \f$ \mathbf r_{ij}\cdot\mathbf v_{ij} < 0 \f$; we use \f$ \mathbf v_i - \mathbf v_j \f$
+/// throughout, and the energy equation with a plus sign
+/// (\ref papers_selhammar_eq4 "see our reading").
 ///
 /// **Equal and opposite.** The bracket is symmetric in i and j and the gradient antisymmetric,
 /// \f$ \nabla_j W_{ji} = -\nabla_i W_{ij} \f$.  The force of j on i,

@@ -107,7 +107,7 @@ TubeRun<Scene::D> run_shock_tube(const sph::ShockTubeSetup& setup,
   if (options.report == RunReport::none) display.live = nullptr;
   Progress progress(options.t_end, options.label, display);
   sim.run_until(options.t_end, [&](const sph::Simulation<Scene>& s) {
-    progress.update(s.steps(), s.time(), s.last_limit().dt);
+    progress.update(s.steps() - 1, s.time(), s.last_limit().dt);  // (update takes the index of the step)
     if (s.last_limit().criterion != "output time") run.limit = s.last_limit().criterion;
   });
   progress.finish();
