@@ -160,11 +160,7 @@ void compute_density(Particles<D>& p, const NeighbourList<D>& list, const Positi
   constexpr bool rates = any_velocity_field(needs);
   if constexpr (rates) {
     require(fields != nullptr, "density: velocity fields asked for without a place to put them");
-    if constexpr (has(needs, Needs::density_rate)) fields->density_rate.resize(n);
-    if constexpr (has(needs, Needs::velocity_divergence)) fields->velocity_divergence.resize(n);
-    if constexpr (has(needs, Needs::velocity_curl)) {
-      for (auto& component : fields->velocity_curl) component.resize(n);
-    }
+    fields->resize(needs, n);
   }
   long bad = -1;
 #pragma omp parallel for schedule(dynamic, 512) if (n >= parallel_threshold)

@@ -49,6 +49,16 @@ struct DerivedFields {
   std::vector<double> density_rate;         ///< \f$ \dot\rho_i \f$ (density pass)
   std::vector<double> velocity_divergence;  ///< \f$ (\nabla\cdot\mathbf v)_i \f$ (density pass)
   std::array<std::vector<double>, curl_components<D>> velocity_curl;  ///< per component (density pass)
+
+  /// Size the velocity-derivative fields in `needs` for n particles (the others stay empty).
+  /// Done before a pass hands out pointers to them, so no pointer outlives a reallocation.
+  void resize(Needs needs, std::size_t n) {
+    if (has(needs, Needs::density_rate)) density_rate.resize(n);
+    if (has(needs, Needs::velocity_divergence)) velocity_divergence.resize(n);
+    if (has(needs, Needs::velocity_curl)) {
+      for (auto& component : velocity_curl) component.resize(n);
+    }
+  }
 };
 
 /// Every per-particle field as a plain pointer (null where the field does not exist in this

@@ -333,11 +333,11 @@ class Simulation {
   // Density, and in the same loop the equation of state and the terms' after_density hooks.
   void density_pass() {
     auto& p = particles_;
-    std::array<const double*, D> v;
-    for (int a = 0; a < D; ++a) v[a] = velocities_.axis(a);
+    // (the fields first: the hooks' view must point at their final arrays)
+    fields_.resize(needs, p.size());
     const ParticleView<D> in = view();
     compute_density<D, K, needs>(
-        p, search_.list(), positions_.view(box_), settings_.density,
+        p, search_.list(), in.x, settings_.density,
         [&](std::size_t i) {
           p.pressure[i] = eos_.pressure(p.density[i], p.internal_energy[i]);
           p.sound_speed[i] = eos_.sound_speed(p.density[i], p.internal_energy[i]);
@@ -348,7 +348,7 @@ class Simulation {
             });
           }
         },
-        v, &fields_);
+        in.v, &fields_);
   }
 
   // The gradient pass: a second loop over the same neighbour list, for the terms that have one.

@@ -56,6 +56,25 @@ struct PressureOnly : sph::Scene<D> {
   using Terms = sph::Terms<sph::PressureHernquistKatz>;
 };
 
+// A term that reads the fields in its after_density hook and keeps what it saw: the hook must
+// see each particle's fields of this evaluation, through pointers that are still valid.
+struct ReadsFields {
+  static constexpr const char* name = "test: reads the fields after the density";
+  static constexpr sph::Needs needs = sph::Needs::density_rate | sph::Needs::velocity_curl;
+  std::vector<double> seen_rate, seen_curl;
+  void resize(std::size_t n) {
+    seen_rate.assign(n, 0.0);
+    seen_curl.assign(n, 0.0);
+  }
+  void after_density(std::size_t i, const sph::ParticleView<2>& in) {
+    seen_rate[i] = in.density_rate[i];
+    seen_curl[i] = in.curl[0][i];
+  }
+};
+struct ReadingScene : sph::Scene<2> {
+  using Terms = sph::Terms<sph::PressureHernquistKatz, ReadsFields>;
+};
+
 constexpr double two_pi = 2 * std::numbers::pi;
 constexpr double eps = std::numeric_limits<double>::epsilon();
 
@@ -534,6 +553,32 @@ TEST_CASE("a sine velocity field in a periodic box: a bounded error, second orde
   SECTION("1D") { check_sine_field<1>(); }
   SECTION("2D") { check_sine_field<2>(); }
   SECTION("3D") { check_sine_field<3>(); }
+}
+
+TEST_CASE("an after_density hook reads the fields of the same evaluation", "[velocity-fields]") {
+  // A sheared, compressed flow, so that rho-dot and the curl are not zero.
+  auto p = lattice_particles<2>(Vec<2>::Zero(), Vec<2>::Ones(), 24);
+  for (std::size_t i = 0; i < p.size(); ++i) {
+    const Vec<2> x = p.position[i];
+    p.velocity[i] = Vec<2>(std::sin(two_pi * x[1]) - 0.3 * std::sin(two_pi * x[0]), 0.2 * std::cos(two_pi * x[0]));
+  }
+  sph::Settings s;
+  s.smoothing = sph::SmoothingLengthRule::neighbour_number(20, 2);
+  sph::Simulation<ReadingScene> sim(p, sph::Box<2>::periodic_box(Vec<2>::Zero(), Vec<2>::Ones()), s);
+  for (int step = 0; step < 2; ++step) {  // the constructor's evaluation, then a step's
+    const auto& term = sim.term<ReadsFields>();
+    const auto& fields = sim.fields();
+    bool same = true;
+    double largest = 0;
+    for (std::size_t i = 0; i < sim.particles().size(); ++i) {
+      same = same && term.seen_rate[i] == fields.density_rate[i] && term.seen_curl[i] == fields.velocity_curl[0][i];
+      largest = std::max(largest, std::abs(fields.density_rate[i]));
+    }
+    INFO("evaluation " << step << ": largest |rho-dot| " << largest);
+    CHECK(same);
+    CHECK(largest > 0.1);
+    sim.step();
+  }
 }
 
 TEST_CASE("rho-dot equals -rho div v to round-off", "[velocity-fields]") {
