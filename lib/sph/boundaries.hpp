@@ -26,7 +26,6 @@ namespace sph {
 /// No boundaries beyond the box: every particle is a fluid particle and moves.
 struct NoBoundaries {
   static constexpr const char* name = "none";
-  static constexpr bool has_fixed_particles = false;
   static constexpr bool has_constraint = false;
   template <int D>
   static constexpr bool moves(std::size_t, const Particles<D>&) {
@@ -55,7 +54,6 @@ struct NoBoundaries {
 /// 1996, sect. 4.1: the walls of the Poiseuille flow).
 struct FixedParticles {
   static constexpr const char* name = "fixed boundary particles";
-  static constexpr bool has_fixed_particles = true;
   static constexpr bool has_constraint = false;
   template <int D>
   static bool moves(std::size_t i, const Particles<D>& p) {
@@ -90,7 +88,6 @@ struct FixedParticles {
 template <int D>
 struct ReflectingSphere {
   static constexpr const char* name = "reflecting sphere";
-  static constexpr bool has_fixed_particles = false;
   static constexpr bool has_constraint = true;
 
   Vec<D> centre = Vec<D>::Zero();
