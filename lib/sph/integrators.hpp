@@ -6,8 +6,8 @@
 /// An integrator is a policy the scene names.  It owns the buffers it needs and advances the
 /// particles by one step dt through the simulation's interface for integrators:
 /// `particles()`, `moves(i)` (fixed boundary particles do not), `drifted(i, v)` (wrap into the
-/// box, apply the boundaries' constraint to the position and to v, the velocity that carries on), `kicked(i, dt, v_before, u)` (the terms' energy
-/// bookkeeping) and `evaluate()` (every pass of the step at the current state).  Both
+/// box, apply the boundaries' constraint to the position and to v, the velocity that carries on), `kicked(i, dt, v_before, v, u)` (the terms' own
+/// updates of v and u at a kick, when `Sim::kicks_terms`) and `evaluate()` (every pass of the step at the current state).  Both
 /// integrators evaluate the accelerations once per step, so they cost the same.
 
 #include "sph/dimension.hpp"
@@ -57,8 +57,13 @@ struct Leapfrog {
       if constexpr (energy) {
         const double half_heat = 0.5 * dt * p.energy_rate[i];
         energy_half_[i] = p.internal_energy[i] + half_heat;
-        sim.kicked(i, 0.5 * dt, p.velocity[i], energy_half_[i]);
+        if constexpr (Sim::kicks_terms) {
+          sim.kicked(i, 0.5 * dt, p.velocity[i], velocity_half_[i], energy_half_[i]);
+        }
         p.internal_energy[i] = energy_half_[i] + half_heat;
+      } else if constexpr (Sim::kicks_terms) {
+        double no_energy = 0;
+        sim.kicked(i, 0.5 * dt, p.velocity[i], velocity_half_[i], no_energy);
       }
       p.position[i] += dt * velocity_half_[i];
       sim.drifted(i, velocity_half_[i]);
@@ -73,9 +78,10 @@ struct Leapfrog {
       if (!sim.moves(i)) continue;
       const Vec<D> before = p.velocity[i];
       p.velocity[i] += 0.5 * dt * p.acceleration[i];
-      if constexpr (energy) {
-        p.internal_energy[i] += 0.5 * dt * p.energy_rate[i];
-        sim.kicked(i, 0.5 * dt, before, p.internal_energy[i]);
+      if constexpr (energy) p.internal_energy[i] += 0.5 * dt * p.energy_rate[i];
+      if constexpr (Sim::kicks_terms) {
+        double no_energy = 0;
+        sim.kicked(i, 0.5 * dt, before, p.velocity[i], energy ? p.internal_energy[i] : no_energy);
       }
     }
   }
@@ -139,11 +145,15 @@ struct PredictorCorrector {
     for (std::size_t i = 0; i < n; ++i) {
       if (!sim.moves(i)) continue;
       const Vec<D> kick = dt * p.acceleration[i];
-      p.position[i] = position_[i] + dt * (velocity_[i] + 0.5 * kick);
       p.velocity[i] = velocity_[i] + kick;
-      if constexpr (energy) {
-        p.internal_energy[i] = energy_[i] + dt * p.energy_rate[i];
-        sim.kicked(i, dt, velocity_[i], p.internal_energy[i]);
+      if constexpr (energy) p.internal_energy[i] = energy_[i] + dt * p.energy_rate[i];
+      if constexpr (Sim::kicks_terms) {
+        double no_energy = 0;
+        sim.kicked(i, dt, velocity_[i], p.velocity[i], energy ? p.internal_energy[i] : no_energy);
+        // (a term may have changed the end velocity: the drift takes the mean of the two)
+        p.position[i] = position_[i] + 0.5 * dt * (velocity_[i] + p.velocity[i]);
+      } else {
+        p.position[i] = position_[i] + dt * (velocity_[i] + 0.5 * kick);
       }
       sim.drifted(i, p.velocity[i]);
     }

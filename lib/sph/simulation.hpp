@@ -113,6 +113,8 @@ class Simulation {
   /// All passes at the current positions and (predicted) velocities and energies.
   void evaluate() {
     if constexpr (hydro) {
+      // (a kick may have left a particle with negative energy: stop before it becomes a NaN)
+      check_energy("after the kick, before the forces");
       search_.update(particles_, box_, settings_.smoothing);
       positions_.assign(particles_.position);
       velocities_.assign(particles_.velocity);
@@ -241,11 +243,14 @@ class Simulation {
       }
     }
   }
-  /// After particle i was kicked by dt from velocity v_before: the terms' energy bookkeeping.
-  void kicked(std::size_t i, double dt, const Vec<D>& v_before, double& u) {
-    if constexpr (TermList::template any_with_kick<D>) {
+  /// Whether any term acts on the kicks (integrators call kicked() only then).
+  static constexpr bool kicks_terms = TermList::template any_with_kick<D>;
+  /// After particle i was kicked by dt from velocity v_before to v: the terms' own updates of
+  /// v and u (u is a dummy when the gas does not evolve it).
+  void kicked(std::size_t i, double dt, const Vec<D>& v_before, Vec<D>& v, double& u) {
+    if constexpr (kicks_terms) {
       terms_.for_each([&](auto& t) {
-        if constexpr (HasWithKick<std::decay_t<decltype(t)>, D>) t.with_kick(i, dt, v_before, u);
+        if constexpr (HasWithKick<std::decay_t<decltype(t)>, D>) t.with_kick(i, dt, v_before, v, u);
       });
     }
   }
@@ -427,7 +432,9 @@ class Simulation {
         if (!(p.internal_energy[i] >= 0)) {
           throw Error(std::string("energy equation: ") + when + ", particle " + show(i) + " at " +
                       to_string<D>(p.position[i]) + " has internal energy " + show(p.internal_energy[i]) +
-                      " at t = " + show(time_) + " (step too long for the cooling rate: lower the Courant factor)");
+                      " at t = " + show(time_) +
+                      " (the step is too long for its cooling rate: lower the Courant factor, or use"
+                      " the exact update of a term that has one)");
         }
       }
     }

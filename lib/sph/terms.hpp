@@ -19,7 +19,7 @@
 /// | `heating(pair, view)` | force pass | with a bracket: the factor \f$ H_{ij} \f$ of its heating, in place of \f$ \tfrac12 B_{ij} \f$ |
 /// | `pair_acceleration(pair, view)` | force pass | a non-central pair acceleration and its heating |
 /// | `after_force(i, view, a_i, dudt_i)` | after the force pass | per-particle accelerations (Selhammar's collective term) |
-/// | `with_kick(i, dt, v_before, u)` | integrator | after each kick of particle i by dt, from velocity v_before; may change u (energy bookkeeping; called only when the gas evolves u) |
+/// | `with_kick(i, dt, v_before, v, u)` | integrator | after each kick of particle i by dt, from velocity v_before to v: may change v (a term integrated exactly over the kick) and u (energy bookkeeping, or a per-particle coefficient's own equation); u is a dummy when the gas does not evolve it |
 /// | `signal_speed(i, view)` | time step | adds to the signal speed of the Courant criterion (eq 7) |
 /// | `timestep(i, view)`, `timestep_name` | time step | a limit of its own, reported by name when it limits |
 ///
@@ -97,8 +97,9 @@ concept HasAfterForce = requires(T t, std::size_t i, const ParticleView<D>& view
   t.after_force(i, view, a, dudt);
 };
 template <class T, int D>
-concept HasWithKick = requires(T t, std::size_t i, double dt, const Vec<D>& v_before, double& u) {
-  t.with_kick(i, dt, v_before, u);
+concept HasWithKick = requires(T t, std::size_t i, double dt, const Vec<D>& v_before, Vec<D>& v,
+                                double& u) {
+  t.with_kick(i, dt, v_before, v, u);
 };
 template <class T, int D>
 concept HasSignalSpeed = requires(const T t, std::size_t i, const ParticleView<D>& view) {

@@ -229,9 +229,10 @@ struct HeatingDrag {
     acceleration[i] = a;
   }
   double timestep(std::size_t, const sph::ParticleView<Dim>&) const { return step_fraction * tau; }
-  void with_kick(std::size_t i, double dt, const Vec<Dim>& v_before, double& u) const {
+  void with_kick(std::size_t i, double dt, const Vec<Dim>& v_before, Vec<Dim>& v, double& u) const {
     const Vec<Dim> v_after = v_before + dt * acceleration[i];
     u -= 0.5 * (v_after.squaredNorm() - v_before.squaredNorm());
+    (void)v;
   }
 };
 template <class I>
@@ -330,9 +331,11 @@ struct Recorder {
     ++afters[i];
     acceleration[i] = a;
   }
-  void with_kick(std::size_t i, double dt, const Vec<Dim>& v_before, double&) {
+  void with_kick(std::size_t i, double dt, const Vec<Dim>& v_before, Vec<Dim>& v, double&) {
     const Vec<Dim> v_after = v_before + dt * acceleration[i];
     kinetic[i] += 0.5 * (v_after.squaredNorm() - v_before.squaredNorm());
+    // the velocity handed over is the kicked one
+    if ((v - v_after).norm() > 1e-12 * (1 + v.norm())) ++out_of_order[i];
     ++kicks[i];
   }
 };

@@ -1,0 +1,339 @@
+#pragma once
+/// \file
+/// \brief Selhammar's (1997) modified artificial viscosity: the restricted von
+/// Neumann-Richtmyer term (eq 13) and the collective bulk term (eqs 14-19).
+///
+/// The standard viscosity (monaghan_gingold_1983.hpp) acts on every approaching pair.  In a
+/// gas that is compressed smoothly, neighbours approach too -- at a speed that a few particles
+/// per smoothing length cannot tell from a shock -- and the viscosity heats the gas and stops
+/// the compression.  Selhammar keeps both terms of the standard viscosity but restricts where
+/// they act.
+///
+/// **The restricted von Neumann-Richtmyer term** (eq 13) is the quadratic term alone,
+/// \f$ \Pi_{ij} = \beta\mu_{ij}^2/\bar\rho_{ij} \f$, on only for a pair that approaches faster
+/// than sound and faster than the compression of its neighbourhood explains.  In a flow that
+/// compresses at the rate \f$ \dot\rho/\rho \f$, two particles a distance r apart approach at
+/// \f$ (\dot\rho/D\rho)\, r \f$ (eqs 10-11, in D dimensions); only the excess over sound
+/// speed beyond that is penetration.  With \f$ s_{ij} = -\mathbf r_{ij}\cdot\mathbf v_{ij}/r_{ij} \f$
+/// the approach speed (positive when approaching):
+/// \f[ \text{on} \iff s_{ij} > \bar c_{ij} \quad\text{and}\quad
+///     s_{ij} - \bar c_{ij} > \frac{\bar{\dot\rho}_{ij}}{D\bar\rho_{ij}}\, r_{ij}, \f]
+/// with \f$ \dot\rho_i \f$ from the continuity equation (positive under compression).  The
+/// paper prints the last inequality the other way round; RestrictedVonNeumannRichtmyer offers
+/// that reading too, and chapter 5's homologous compression decides between them.
+///
+/// **The collective bulk term** (eqs 14-16) replaces the \f$ \alpha \f$ term.  Particle i
+/// interacts once with the mean velocity of its neighbourhood, its own contribution removed,
+/// \f[ \tilde{\mathbf v}_i = \frac{\sum_{j\ne i} \mathbf v_j V_{ij} w_{ij}}{N_i}, \qquad
+///     V_{ij} = \bar m_{ij}/\bar\rho_{ij}, \f]
+/// normalised so that \f$ \tilde{\mathbf v}_i = \mathbf v_i \f$ when every neighbour moves with
+/// \f$ \mathbf v_i \f$: exactly with the neighbours' own sum of weights
+/// \f$ N_i = \sum_{j\ne i} V_{ij} w_{ij} \f$ (Shepard), approximately with the printed
+/// \f$ N_i = 1 - w_i \f$, \f$ w_i = (m_i/\rho_i)\, w(0, h_i) \f$.  With
+/// \f$ \Delta\mathbf v_i = \tilde{\mathbf v}_i - \mathbf v_i \f$ the acceleration is
+/// \f[ \dot{\mathbf v}_i = -N_n\eta\,\frac{c_i}{h_i}\,\hat{\mathbf v}_i
+///     \sqrt{\lvert\mathbf v_i\cdot\Delta\mathbf v_i\rvert}
+///     \quad\text{if } \mathbf v_i\cdot\Delta\mathbf v_i < 0, \f]
+/// that is, when i outruns its neighbourhood along its own direction of motion.  Write
+/// \f$ k_i = N_n\eta c_i/h_i \f$, \f$ w = \lvert\mathbf v_i\rvert \f$ and
+/// \f$ a = \hat{\mathbf v}_i\cdot\tilde{\mathbf v}_i \f$: the term changes only the speed,
+/// \f$ \dot w = -k_i\sqrt{w(w - a)} \f$ while \f$ w > a \f$.
+///
+/// **It is stiff.**  For \f$ w \gg w - a \f$ the rate of \f$ w - a \f$ is
+/// \f$ k_i\sqrt w \f$ times its square root: an explicit kick of length \f$ \delta t \f$
+/// removes \f$ k_i\sqrt{w(w - a)}\,\delta t \f$, more than the excess itself whenever
+/// \f$ w - a < k_i^2 w\,\delta t^2 \f$.  With \f$ N_n = 64 \f$, \f$ \eta = 1 \f$ and the step
+/// of eq 7, \f$ k_i\delta t \approx 64 \times 0.3\, c/(w + 2.2c) \approx 9 \f$ for
+/// \f$ w \sim c \f$: every small excess is overshot, and the particle lands behind its
+/// neighbourhood by up to \f$ (k_i\delta t)^2 w/4 \f$ -- tens of times the sound speed's
+/// worth of kinetic energy, in the worst case.  No \f$ \eta \f$ of order one is stable with
+/// the explicit update; an \f$ \eta \f$ that is would be \f$ \lesssim 0.1 \f$, and then the
+/// term no longer damps.  The remedy used by default: integrate the term's own equation
+/// exactly over the kick, with \f$ k_i \f$, \f$ \hat{\mathbf v}_i \f$ and
+/// \f$ \tilde{\mathbf v}_i \f$ held.  Since
+/// \f$ \int dw/\sqrt{w(w - a)} = 2\ln(\sqrt w + \sqrt{w - a}) \f$,
+/// \f[ S(\delta t) = \max\!\left(S_0\, e^{-k_i\delta t/2},\ \sqrt{|a|}\right), \quad
+///     S_0 = \sqrt{w_0} + \sqrt{w_0 - a}, \quad
+///     w(\delta t) = \frac{(S + a/S)^2}{4}: \f]
+/// w falls to a (or to 0 if \f$ a \le 0 \f$) and stops there, whatever the step.
+///
+/// **Energy** (eqs 17-19).  The term is not a pair force, so its work is booked per
+/// particle: after each kick the internal energy takes what the kinetic energy lost,
+/// \f$ \Delta u_i = -\tfrac12(\lvert\mathbf v_\mathrm{after}\rvert^2 -
+/// \lvert\mathbf v_\mathrm{without}\rvert^2) \f$, where \f$ \mathbf v_\mathrm{without} \f$ is
+/// the velocity the kick would have given without this term.  For the explicit update this is
+/// eq 19 corrected: \f$ \Delta u_i = -(\mathbf v\cdot\mathbf a_i\,\delta t +
+/// \tfrac12 a_i^2\delta t^2) \f$ (the paper prints \f$ m_i/2 \f$ in the first term of eq 18 and
+/// one \f$ \delta t \f$ too many in eq 19).  So \f$ \Delta T_i + \Delta U_i = 0 \f$ to
+/// round-off, per particle and per kick.  Momentum is not conserved exactly: the neighbours do
+/// not feel the reaction.
+///
+/// **Frame.**  As printed the term depends on \f$ \mathbf v_i \f$ itself, so it acts more
+/// strongly in a frame where the particle moves fast.  CollectiveFrame::neighbourhood
+/// evaluates eq 16 in the rest frame of the neighbourhood instead, where
+/// \f$ \mathbf v_i \to \mathbf v_i - \tilde{\mathbf v}_i \f$ and the term becomes a relaxation
+/// \f$ \dot{\mathbf v}_i = -k_i(\mathbf v_i - \tilde{\mathbf v}_i) \f$: Galilean invariant,
+/// and acting on every deviation, not only on particles that outrun their neighbours.
+
+#include "sph/dimension.hpp"
+#include "sph/error.hpp"
+#include "sph/fields.hpp"
+#include "sph/kernel.hpp"
+#include "sph/pair.hpp"
+#include "sph/terms.hpp"
+
+#include <atomic>
+#include <cmath>
+#include <cstdio>
+#include <string>
+#include <vector>
+
+namespace sph {
+
+/// Which way round the third condition of eq 13 is read.
+enum class CompressionTest {
+  excess_beyond_compression,  ///< on where \f$ s - \bar c > (\bar{\dot\rho}/D\bar\rho)\, r \f$ (our reading)
+  as_printed,                 ///< on where \f$ (\bar{\dot\rho}/D\bar\rho)\, r > s - \bar c \f$
+  none,                       ///< eq 12 alone: on for every supersonic approach
+};
+
+/// The restricted von Neumann-Richtmyer viscosity, Selhammar (1997) eq 13.  A bracket term
+/// that asks the density pass for \f$ \dot\rho \f$.
+struct RestrictedVonNeumannRichtmyer {
+  static constexpr bool tracks_mu = true;  ///< the force pass keeps max_j mu_ij (eq 7)
+  static constexpr Needs needs = Needs::density_rate;
+  static constexpr const char* name = "Selhammar (1997) restricted vNR";
+
+  double beta = 2.0;
+  double nu2_factor = 0.01;  ///< nu^2 = nu2_factor * h_bar^2 (Selhammar: 1e-4)
+  CompressionTest test = CompressionTest::excess_beyond_compression;
+
+  RestrictedVonNeumannRichtmyer() = default;
+  RestrictedVonNeumannRichtmyer(double b, double nu2 = 0.01,
+                                CompressionTest t = CompressionTest::excess_beyond_compression)
+      : beta(b), nu2_factor(nu2), test(t) {
+    require(std::isfinite(b) && b >= 0,
+            "restricted vNR viscosity: beta must be non-negative (got " + show(b) + ")");
+    require(std::isfinite(nu2) && nu2 > 0,
+            "restricted vNR viscosity: the nu^2 factor must be positive (got " + show(nu2) + ")");
+  }
+
+  std::string describe() const {
+    const char* reading = test == CompressionTest::excess_beyond_compression ? "our reading"
+                          : test == CompressionTest::as_printed              ? "as printed"
+                                                                             : "eq 12 only";
+    char s[128];
+    std::snprintf(s, sizeof s, "restricted vNR, beta = %g, third condition %s", beta, reading);
+    return s;
+  }
+
+  /// Whether the term acts on this pair (conditions of eq 13).  Branch-free, for the SIMD loop.
+  template <int D>
+  bool active(const Pair<D>& p, const ParticleView<D>& in) const {
+    const double r = p.r > 0 ? p.r : 1.0;
+    const double approach = -p.rv / r;  // s_ij > 0 when approaching
+    const double c_bar = 0.5 * (in.c[p.i] + in.c[p.j]);
+    const double rho_bar = 0.5 * (in.rho[p.i] + in.rho[p.j]);
+    const double rate_bar = 0.5 * (in.density_rate[p.i] + in.density_rate[p.j]);
+    const double explained = rate_bar / (D * rho_bar) * p.r;  // eq 11: compression's approach
+    const double excess = approach - c_bar;
+    const bool third = test == CompressionTest::excess_beyond_compression ? excess > explained
+                       : test == CompressionTest::as_printed              ? explained > excess
+                                                                          : true;
+    return (p.rv < 0) & (excess > 0) & third;
+  }
+
+  /// \f$ \Pi_{ij} = \beta\mu_{ij}^2/\bar\rho_{ij} \f$ where active, and \f$ |\mu_{ij}| \f$
+  /// for the time step (only where active: a term that does not act sets no limit).
+  template <int D>
+  Bracket bracket(const Pair<D>& p, const ParticleView<D>& in) const {
+    const double rho_bar = 0.5 * (in.rho[p.i] + in.rho[p.j]);
+    const double mu = active(p, in) ? p.h_bar * p.rv / (p.r2 + nu2_factor * p.h_bar * p.h_bar) : 0.0;
+    return {beta * mu * mu / rho_bar, p.r2 < p.support2 ? -mu : 0.0};
+  }
+
+  /// The quadratic part of eq 7's signal speed, \f$ 1.2\beta\mu_{i,\max} \f$.
+  template <int D>
+  double signal_speed(std::size_t i, const ParticleView<D>& in) const {
+    return 1.2 * beta * in.max_mu[i];
+  }
+};
+
+/// How the neighbourhood's velocity is normalised (eq 15).
+enum class NeighbourhoodNormalisation {
+  shepard,     ///< by the neighbours' own sum of weights: exact for a uniform velocity
+  as_printed,  ///< by \f$ 1 - w_i \f$: exact only if all weights sum to one
+};
+/// How a kick applies the collective term.
+enum class CollectiveUpdate {
+  exact_relaxation,     ///< the term's own equation solved exactly over the kick (default)
+  explicit_as_printed,  ///< an acceleration like any other, as in the paper (stiff)
+};
+/// In which frame eq 16 is evaluated.
+enum class CollectiveFrame {
+  as_printed,     ///< with the particle's own velocity (depends on the frame of reference)
+  neighbourhood,  ///< relative to the neighbourhood's velocity (Galilean invariant)
+};
+
+/// Selhammar's (1997) collective bulk viscosity, eqs 14-19, with its energy bookkeeping.
+/// A term with a gradient pass (the neighbourhood's velocity), an `after_force` hook (the
+/// explicit acceleration), a `with_kick` hook (the exact update and the energy) and a signal
+/// speed \f$ 1.2\eta c_i \f$ (eq 7, with \f$ \eta \f$ "used in the same way as \f$ \alpha \f$").
+template <int D, class K = Kernel<D>>
+struct SelhammarCollective {
+  static constexpr const char* name = "Selhammar (1997) collective bulk viscosity";
+
+  double eta = 1.0;
+  double neighbours = 64;  ///< N_n, the mass of the virtual particle in units of m_i
+  NeighbourhoodNormalisation normalisation = NeighbourhoodNormalisation::shepard;
+  CollectiveUpdate update = CollectiveUpdate::exact_relaxation;
+  CollectiveFrame frame = CollectiveFrame::as_printed;
+
+  // The term's own per-particle fields, from the last evaluation.
+  std::vector<Vec<D>> neighbourhood_velocity;  ///< \f$ \tilde{\mathbf v}_i \f$
+  std::vector<double> rate;                    ///< \f$ k_i = N_n\eta c_i/h_i \f$ (0: no neighbours)
+  std::vector<Vec<D>> acceleration;  ///< the explicit update's acceleration (else zero)
+
+  SelhammarCollective() = default;
+  SelhammarCollective(double eta_, double n_n,
+                      NeighbourhoodNormalisation norm = NeighbourhoodNormalisation::shepard,
+                      CollectiveUpdate upd = CollectiveUpdate::exact_relaxation,
+                      CollectiveFrame fr = CollectiveFrame::as_printed)
+      : eta(eta_), neighbours(n_n), normalisation(norm), update(upd), frame(fr) {
+    require(std::isfinite(eta_) && eta_ >= 0,
+            "collective viscosity: eta must be non-negative (got " + show(eta_) + ")");
+    require(std::isfinite(n_n) && n_n >= 1,
+            "collective viscosity: the neighbour number N_n must be at least 1 (got " +
+                show(n_n) + ")");
+  }
+  // (copies share nothing: the counter is reset)
+  SelhammarCollective(const SelhammarCollective& o)
+      : eta(o.eta), neighbours(o.neighbours), normalisation(o.normalisation), update(o.update),
+        frame(o.frame), neighbourhood_velocity(o.neighbourhood_velocity), rate(o.rate),
+        acceleration(o.acceleration) {}
+  SelhammarCollective& operator=(const SelhammarCollective& o) {
+    eta = o.eta;
+    neighbours = o.neighbours;
+    normalisation = o.normalisation;
+    update = o.update;
+    frame = o.frame;
+    neighbourhood_velocity = o.neighbourhood_velocity;
+    rate = o.rate;
+    acceleration = o.acceleration;
+    fallbacks_ = 0;
+    return *this;
+  }
+
+  std::string describe() const {
+    char s[160];
+    std::snprintf(s, sizeof s, "collective term, eta = %g, N_n = %g, %s, %s%s", eta, neighbours,
+                  normalisation == NeighbourhoodNormalisation::shepard ? "Shepard" : "1/(1-w_i)",
+                  update == CollectiveUpdate::exact_relaxation ? "exact relaxation"
+                                                               : "explicit kick",
+                  frame == CollectiveFrame::neighbourhood ? ", neighbourhood frame" : "");
+    return s;
+  }
+
+  /// How many particle evaluations fell back from the printed normalisation to Shepard's
+  /// because \f$ w_i \ge 1 \f$ (a particle with very few neighbours), since the start.
+  long fallbacks() const { return fallbacks_.load(); }
+
+  void resize(std::size_t n) {
+    neighbourhood_velocity.assign(n, Vec<D>::Zero());
+    rate.assign(n, 0.0);
+    acceleration.assign(n, Vec<D>::Zero());
+  }
+
+  // --- the gradient pass: eq 14 without i's own term --------------------------------------
+  template <int Dim>
+  struct GradientSum {
+    double w = 0;
+    double wv[3] = {0, 0, 0};
+  };
+  void gradient_pair(GradientSum<D>& sum, const Pair<D>& p, const ParticleView<D>& in) const {
+    const double volume = (in.m[p.i] + in.m[p.j]) / (in.rho[p.i] + in.rho[p.j]);  // m_bar/rho_bar
+    const double w = volume * K::value(p.r, p.h_bar);
+    sum.w += w;
+    for (int a = 0; a < D; ++a) sum.wv[a] += w * in.v[a][p.j];
+  }
+  void gradient_finish(std::size_t i, GradientSum<D>& sum, const ParticleView<D>& in) {
+    Vec<D> v_i;
+    for (int a = 0; a < D; ++a) v_i[a] = in.v[a][i];
+    if (!(sum.w > 0)) {  // no neighbour but itself: no neighbourhood, no collective term
+      neighbourhood_velocity[i] = v_i;
+      rate[i] = 0;
+      return;
+    }
+    double norm = sum.w;
+    if (normalisation == NeighbourhoodNormalisation::as_printed) {
+      const double self = in.m[i] / in.rho[i] * K::value(0.0, in.h[i]);
+      if (self < 1) {
+        norm = 1 - self;
+      } else {
+        fallbacks_.fetch_add(1, std::memory_order_relaxed);
+      }
+    }
+    for (int a = 0; a < D; ++a) neighbourhood_velocity[i][a] = sum.wv[a] / norm;
+    rate[i] = neighbours * eta * in.c[i] / in.h[i];
+  }
+
+  /// The explicit update: eq 16 as an acceleration at the velocities of the evaluation.
+  void after_force(std::size_t i, const ParticleView<D>& in, Vec<D>& a, double&) {
+    if (update != CollectiveUpdate::explicit_as_printed) return;
+    Vec<D> v;
+    for (int k = 0; k < D; ++k) v[k] = in.v[k][i];
+    acceleration[i] = explicit_acceleration(i, v);
+    a += acceleration[i];
+  }
+
+  /// Eq 16 at velocity v, with this evaluation's neighbourhood and rate.
+  Vec<D> explicit_acceleration(std::size_t i, const Vec<D>& v) const {
+    const Vec<D>& mean = neighbourhood_velocity[i];
+    if (frame == CollectiveFrame::neighbourhood) return -rate[i] * (v - mean);
+    const double w = v.norm();
+    if (!(w > 0)) return Vec<D>::Zero();
+    const Vec<D> unit = v / w;
+    const double along = unit.dot(mean);  // a: the neighbourhood's speed along v_i
+    if (!(w > along)) return Vec<D>::Zero();
+    return -rate[i] * std::sqrt(w * (w - along)) * unit;
+  }
+
+  /// The exact update of v over dt by the term alone (k, v-hat and the neighbourhood held).
+  Vec<D> relaxed(std::size_t i, const Vec<D>& v, double dt) const {
+    const Vec<D>& mean = neighbourhood_velocity[i];
+    const double k = rate[i];
+    if (frame == CollectiveFrame::neighbourhood) return mean + std::exp(-k * dt) * (v - mean);
+    const double w = v.norm();
+    if (!(w > 0)) return v;
+    const Vec<D> unit = v / w;
+    const double along = unit.dot(mean);
+    if (!(w > along)) return v;
+    const double s0 = std::sqrt(w) + std::sqrt(w - along);
+    const double s = std::max(s0 * std::exp(-0.5 * k * dt), std::sqrt(std::abs(along)));
+    const double root = s + along / s;
+    return (0.25 * root * root) * unit;
+  }
+
+  /// After a kick by dt: the exact update (default), and the energy the term took from the
+  /// kinetic energy given to u (eqs 17-19, corrected).
+  void with_kick(std::size_t i, double dt, const Vec<D>&, Vec<D>& v, double& u) const {
+    if (update == CollectiveUpdate::explicit_as_printed) {
+      const Vec<D> without = v - dt * acceleration[i];
+      u -= 0.5 * (v.squaredNorm() - without.squaredNorm());
+    } else {
+      const Vec<D> after = relaxed(i, v, dt);
+      u -= 0.5 * (after.squaredNorm() - v.squaredNorm());
+      v = after;
+    }
+  }
+
+  /// The collective part of eq 7's signal speed, \f$ 1.2\eta c_i \f$.
+  double signal_speed(std::size_t i, const ParticleView<D>& in) const {
+    return 1.2 * eta * in.c[i];
+  }
+
+ private:
+  mutable std::atomic<long> fallbacks_{0};
+};
+
+}  // namespace sph
