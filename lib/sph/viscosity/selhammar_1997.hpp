@@ -28,34 +28,45 @@
 ///     V_{ij} = \bar m_{ij}/\bar\rho_{ij}, \f]
 /// normalised so that \f$ \tilde{\mathbf v}_i = \mathbf v_i \f$ when every neighbour moves with
 /// \f$ \mathbf v_i \f$: exactly with the neighbours' own sum of weights
-/// \f$ N_i = \sum_{j\ne i} V_{ij} w_{ij} \f$ (Shepard), approximately with the printed
-/// \f$ N_i = 1 - w_i \f$, \f$ w_i = (m_i/\rho_i)\, w(0, h_i) \f$.  With
-/// \f$ \Delta\mathbf v_i = \tilde{\mathbf v}_i - \mathbf v_i \f$ the acceleration is
-/// \f[ \dot{\mathbf v}_i = -N_n\eta\,\frac{c_i}{h_i}\,\hat{\mathbf v}_i
+/// \f$ N_i = \sum_{j\ne i} V_{ij} w_{ij} \f$ (Shepard, the default), or with the printed
+/// \f$ N_i = 1 - w_i \f$, \f$ w_i = (m_i/\rho_i)\, w(0, h_i) \f$, which is the same where the
+/// density is uniform (the density sum makes the weights add up to one there) and differs where
+/// it is not.  Eq 16 is, with \f$ k_i = N_n\eta c_i/h_i \f$,
+/// \f[ \dot{\mathbf v}_i = -k_i\,\hat{\mathbf v}_i
 ///     \sqrt{\lvert\mathbf v_i\cdot\Delta\mathbf v_i\rvert}
 ///     \quad\text{if } \mathbf v_i\cdot\Delta\mathbf v_i < 0, \f]
-/// that is, when i outruns its neighbourhood along its own direction of motion.  Write
-/// \f$ k_i = N_n\eta c_i/h_i \f$, \f$ w = \lvert\mathbf v_i\rvert \f$ and
-/// \f$ a = \hat{\mathbf v}_i\cdot\tilde{\mathbf v}_i \f$: the term changes only the speed,
-/// \f$ \dot w = -k_i\sqrt{w(w - a)} \f$ while \f$ w > a \f$.
+/// and what \f$ \Delta\mathbf v_i \f$ is, the print leaves open.  Eq 14 gives that name to the
+/// mean velocity itself; read so (CollectiveReading::mean_velocity, the default), the term acts
+/// on a particle that moves *against* the mean motion of its neighbourhood -- a particle of one
+/// stream inside another, the penetration the term is meant to stop -- and nowhere in a flow
+/// whose particles all move roughly together.  Read as the difference
+/// \f$ \tilde{\mathbf v}_i - \mathbf v_i \f$ (CollectiveReading::difference), it acts on every
+/// particle that outruns its neighbourhood, which in a real flow is half of them at any time:
+/// a one-sided drag that removes momentum and kinetic energy everywhere.  The paper's weak shock
+/// tube decides (chapter 5): with the difference reading the shock of its Fig 2 never forms.
+/// In both readings the term changes only the speed \f$ w = \lvert\mathbf v_i\rvert \f$; with
+/// \f$ a = \hat{\mathbf v}_i\cdot\tilde{\mathbf v}_i \f$ the neighbourhood's speed along
+/// \f$ \hat{\mathbf v}_i \f$, \f$ \dot w = -k_i\sqrt{w\lvert a\rvert} \f$ while
+/// \f$ a < 0 \f$ (mean velocity), or \f$ \dot w = -k_i\sqrt{w(w - a)} \f$ while
+/// \f$ w > a \f$ (difference).  CollectiveMagnitude::projection replaces the root by
+/// \f$ \lvert a\rvert \f$ or \f$ w - a \f$, linear in the velocities.
 ///
-/// **It is stiff.**  For \f$ w \gg w - a \f$ the rate of \f$ w - a \f$ is
-/// \f$ k_i\sqrt w \f$ times its square root: an explicit kick of length \f$ \delta t \f$
-/// removes \f$ k_i\sqrt{w(w - a)}\,\delta t \f$, more than the excess itself whenever
-/// \f$ w - a < k_i^2 w\,\delta t^2 \f$.  With \f$ N_n = 64 \f$, \f$ \eta = 1 \f$ and the step
-/// of eq 7, \f$ k_i\delta t \approx 64 \times 0.3\, c/(w + 2.2c) \approx 9 \f$ for
-/// \f$ w \sim c \f$: every small excess is overshot, and the particle lands behind its
-/// neighbourhood by up to \f$ (k_i\delta t)^2 w/4 \f$ -- tens of times the sound speed's
-/// worth of kinetic energy, in the worst case.  No \f$ \eta \f$ of order one is stable with
-/// the explicit update; an \f$ \eta \f$ that is would be \f$ \lesssim 0.1 \f$, and then the
-/// term no longer damps.  The remedy used by default: integrate the term's own equation
-/// exactly over the kick, with \f$ k_i \f$, \f$ \hat{\mathbf v}_i \f$ and
-/// \f$ \tilde{\mathbf v}_i \f$ held.  Since
-/// \f$ \int dw/\sqrt{w(w - a)} = 2\ln(\sqrt w + \sqrt{w - a}) \f$,
+/// **It is stiff.**  The rate \f$ k_i = N_n\eta c_i/h_i \f$ is 64 times that of one pair of
+/// the standard viscosity.  With the step of eq 7, \f$ \delta t = 0.3h/(w + c + 1.2\eta c) \f$,
+/// an explicit kick of a particle meeting a head-on neighbourhood (\f$ \lvert a\rvert = w \f$)
+/// changes its speed by \f$ k_i\delta t\, w = 19.2\eta\, w/(\mathcal M + 1 + 1.2\eta) \f$ with
+/// \f$ \mathcal M = w/c \f$: more than w -- the particle is thrown backwards -- unless
+/// \f$ \eta < (\mathcal M + 1)/18 \f$.  At \f$ \eta = 1 \f$ every head-on encounter slower
+/// than Mach 17 overshoots, and each overshoot turns heat into kinetic energy.  The remedy used
+/// by default: integrate the term's own equation exactly over the kick, with \f$ k_i \f$,
+/// \f$ \hat{\mathbf v}_i \f$ and \f$ \tilde{\mathbf v}_i \f$ held.  For the mean-velocity
+/// reading \f$ \sqrt w \f$ falls linearly,
+/// \f$ w(\delta t) = \max(\sqrt{w_0} - \tfrac12 k_i\sqrt{|a|}\,\delta t,\ 0)^2 \f$; for the
+/// difference reading \f$ \int dw/\sqrt{w(w - a)} = 2\ln(\sqrt w + \sqrt{w - a}) \f$ gives
 /// \f[ S(\delta t) = \max\!\left(S_0\, e^{-k_i\delta t/2},\ \sqrt{|a|}\right), \quad
 ///     S_0 = \sqrt{w_0} + \sqrt{w_0 - a}, \quad
-///     w(\delta t) = \frac{(S + a/S)^2}{4}: \f]
-/// w falls to a (or to 0 if \f$ a \le 0 \f$) and stops there, whatever the step.
+///     w(\delta t) = \frac{(S + a/S)^2}{4}. \f]
+/// Either way w stops where the term switches off, whatever the step.
 ///
 /// **Energy** (eqs 17-19).  The term is not a pair force, so its work is booked per
 /// particle: after each kick the internal energy takes what the kinetic energy lost,
@@ -68,12 +79,13 @@
 /// round-off, per particle and per kick.  Momentum is not conserved exactly: the neighbours do
 /// not feel the reaction.
 ///
-/// **Frame.**  As printed the term depends on \f$ \mathbf v_i \f$ itself, so it acts more
-/// strongly in a frame where the particle moves fast.  CollectiveFrame::neighbourhood
-/// evaluates eq 16 in the rest frame of the neighbourhood instead, where
-/// \f$ \mathbf v_i \to \mathbf v_i - \tilde{\mathbf v}_i \f$ and the term becomes a relaxation
-/// \f$ \dot{\mathbf v}_i = -k_i(\mathbf v_i - \tilde{\mathbf v}_i) \f$: Galilean invariant,
-/// and acting on every deviation, not only on particles that outrun their neighbours.
+/// **Frame.**  As printed the term depends on \f$ \mathbf v_i \f$ itself, so what it does
+/// depends on the frame of reference: in a frame where the whole gas moves fast, no particle
+/// ever moves against its neighbourhood, and the mean-velocity reading never acts.
+/// CollectiveFrame::neighbourhood evaluates eq 16 in the rest frame of the neighbourhood instead,
+/// where \f$ \mathbf v_i \to \mathbf v_i - \tilde{\mathbf v}_i \f$ and the term becomes a
+/// relaxation \f$ \dot{\mathbf v}_i = -k_i(\mathbf v_i - \tilde{\mathbf v}_i) \f$: Galilean
+/// invariant, and acting on every deviation (it is the difference reading's limit).
 
 #include "sph/dimension.hpp"
 #include "sph/error.hpp"
@@ -169,6 +181,16 @@ enum class CollectiveUpdate {
   exact_relaxation,     ///< the term's own equation solved exactly over the kick (default)
   explicit_as_printed,  ///< an acceleration like any other, as in the paper (stiff)
 };
+/// What \f$ \Delta\mathbf v_i \f$ of eq 16 is.
+enum class CollectiveReading {
+  difference,     ///< \f$ \tilde{\mathbf v}_i - \mathbf v_i \f$: on when i outruns its neighbourhood
+  mean_velocity,  ///< \f$ \tilde{\mathbf v}_i \f$ itself (eq 14's name): on when i moves against it
+};
+/// How the strength of eq 16 depends on the velocity difference.
+enum class CollectiveMagnitude {
+  root,        ///< \f$ \sqrt{|\mathbf v_i\cdot\Delta\mathbf v_i|} \f$, as printed
+  projection,  ///< \f$ |\hat{\mathbf v}_i\cdot\Delta\mathbf v_i| \f$: linear in the difference
+};
 /// In which frame eq 16 is evaluated.
 enum class CollectiveFrame {
   as_printed,     ///< with the particle's own velocity (depends on the frame of reference)
@@ -188,6 +210,8 @@ struct SelhammarCollective {
   NeighbourhoodNormalisation normalisation = NeighbourhoodNormalisation::shepard;
   CollectiveUpdate update = CollectiveUpdate::exact_relaxation;
   CollectiveFrame frame = CollectiveFrame::as_printed;
+  CollectiveMagnitude magnitude = CollectiveMagnitude::root;
+  CollectiveReading reading = CollectiveReading::mean_velocity;
 
   // The term's own per-particle fields, from the last evaluation.
   std::vector<Vec<D>> neighbourhood_velocity;  ///< \f$ \tilde{\mathbf v}_i \f$
@@ -209,7 +233,7 @@ struct SelhammarCollective {
   // (copies share nothing: the counter is reset)
   SelhammarCollective(const SelhammarCollective& o)
       : eta(o.eta), neighbours(o.neighbours), normalisation(o.normalisation), update(o.update),
-        frame(o.frame), neighbourhood_velocity(o.neighbourhood_velocity), rate(o.rate),
+        frame(o.frame), magnitude(o.magnitude), reading(o.reading), neighbourhood_velocity(o.neighbourhood_velocity), rate(o.rate),
         acceleration(o.acceleration) {}
   SelhammarCollective& operator=(const SelhammarCollective& o) {
     eta = o.eta;
@@ -217,6 +241,8 @@ struct SelhammarCollective {
     normalisation = o.normalisation;
     update = o.update;
     frame = o.frame;
+    magnitude = o.magnitude;
+    reading = o.reading;
     neighbourhood_velocity = o.neighbourhood_velocity;
     rate = o.rate;
     acceleration = o.acceleration;
@@ -294,8 +320,15 @@ struct SelhammarCollective {
     if (!(w > 0)) return Vec<D>::Zero();
     const Vec<D> unit = v / w;
     const double along = unit.dot(mean);  // a: the neighbourhood's speed along v_i
-    if (!(w > along)) return Vec<D>::Zero();
-    return -rate[i] * std::sqrt(w * (w - along)) * unit;
+    const double k = rate[i];
+    if (reading == CollectiveReading::difference) {
+      if (!(w > along)) return Vec<D>::Zero();
+      if (magnitude == CollectiveMagnitude::projection) return -k * (w - along) * unit;
+      return -k * std::sqrt(w * (w - along)) * unit;
+    }
+    if (!(along < 0)) return Vec<D>::Zero();
+    if (magnitude == CollectiveMagnitude::projection) return k * along * unit;
+    return -k * std::sqrt(-w * along) * unit;
   }
 
   /// The exact update of v over dt by the term alone (k, v-hat and the neighbourhood held).
@@ -307,7 +340,19 @@ struct SelhammarCollective {
     if (!(w > 0)) return v;
     const Vec<D> unit = v / w;
     const double along = unit.dot(mean);
+    if (reading == CollectiveReading::mean_velocity) {
+      if (!(along < 0)) return v;
+      if (magnitude == CollectiveMagnitude::projection) {  // dw/dt = k a: linear, stops at 0
+        return std::max(w + k * along * dt, 0.0) * unit;
+      }
+      // dw/dt = -k sqrt(w |a|): sqrt(w) falls linearly, stops at 0
+      const double root = std::max(std::sqrt(w) - 0.5 * k * std::sqrt(-along) * dt, 0.0);
+      return (root * root) * unit;
+    }
     if (!(w > along)) return v;
+    if (magnitude == CollectiveMagnitude::projection) {  // w - a decays as exp(-k t), w stops at 0
+      return std::max(along + (w - along) * std::exp(-k * dt), 0.0) * unit;
+    }
     const double s0 = std::sqrt(w) + std::sqrt(w - along);
     const double s = std::max(s0 * std::exp(-0.5 * k * dt), std::sqrt(std::abs(along)));
     const double root = s + along / s;
