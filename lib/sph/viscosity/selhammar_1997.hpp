@@ -90,6 +90,7 @@
 #include "sph/dimension.hpp"
 #include "sph/error.hpp"
 #include "sph/fields.hpp"
+#include "sph/forces.hpp"
 #include "sph/kernel.hpp"
 #include "sph/pair.hpp"
 #include "sph/terms.hpp"
@@ -380,5 +381,34 @@ struct SelhammarCollective {
  private:
   mutable std::atomic<long> fallbacks_{0};
 };
+
+/// Where the restricted vNR term acts: of the pairs inside the kernel that approach faster than
+/// sound, how many it is on for.  The test of eq 13's third condition (chapter 5): in a
+/// homologous compression the fraction must stay near zero.
+struct VnrCensus {
+  long supersonic = 0;  ///< approaching pairs with \f$ s_{ij} > \bar c_{ij} \f$, r < 2 h_bar
+  long on = 0;          ///< of those, the pairs the term acts on
+  double fraction() const { return supersonic > 0 ? double(on) / double(supersonic) : 0.0; }
+};
+
+/// The census of the term RestrictedVonNeumannRichtmyer of a simulation, at its last evaluation.
+template <class Sim>
+VnrCensus vnr_census(const Sim& sim) {
+  constexpr int D = Sim::D;
+  const auto in = sim.view();
+  const auto& list = sim.neighbours();
+  const auto& term = sim.template term<RestrictedVonNeumannRichtmyer>();
+  VnrCensus census;
+  for (std::size_t i = 0; i < sim.particles().size(); ++i) {
+    for (const auto& nb : list.of(i)) {
+      const Pair<D> pair = pair_geometry<D, typename Sim::K>(in, i, nb);
+      if (!(pair.rv < 0) || !(pair.r2 < pair.support2)) continue;
+      if (-pair.rv / pair.r <= 0.5 * (in.c[pair.i] + in.c[pair.j])) continue;
+      ++census.supersonic;
+      if (term.active(pair, in)) ++census.on;
+    }
+  }
+  return census;
+}
 
 }  // namespace sph
