@@ -138,6 +138,11 @@ struct LagrangianViscosity {
   bool enabled = true;
   double quadratic = 2.0;  ///< c_q: q = rho (c_q^2 du^2 + c_l c |du|) in compression
   double linear = 0.1;     ///< c_l
+  /// Measure the velocity jump against a homologous flow about r = 0: in a curved geometry use
+  /// \f$ \Delta u - (\bar u/\bar r)\Delta r \f$ (zone means), which vanishes when
+  /// \f$ u \propto r \f$, so that a self-similar compression is not heated (the point of
+  /// Caramana, Shashkov & Whalen 1998).  Ignored in planar geometry, which has no centre.
+  bool homologous_limiter = false;
 };
 
 /// Everything about a run except the initial data.
@@ -471,7 +476,7 @@ class Lagrangian1D {
   }
   /// q of zone i for the current velocities.
   double viscous_pressure(std::size_t i) const {
-    return viscosity(density(i), sound_speed(i), u_[i + 1] - u_[i]);
+    return viscosity(density(i), sound_speed(i), velocity_jump(r_, u_, i));
   }
   double zone_centre(std::size_t i) const { return 0.5 * (r_[i] + r_[i + 1]); }
 
@@ -632,8 +637,23 @@ class Lagrangian1D {
     for (std::size_t i = 0; i < N; ++i) {
       const double rho = mi[i] / lagrangian_detail::volume<G>(rk[i], rk[i + 1]);
       ci[i] = std::sqrt(gg1 * ei[i]);
-      Pi_i[i] = g1 * rho * ei[i] + viscosity(rho, ci[i], uk[i + 1] - uk[i], cq2, cl);
+      Pi_i[i] = g1 * rho * ei[i] + viscosity(rho, ci[i], velocity_jump(r, u, i), cq2, cl);
     }
+  }
+
+  /// The velocity jump across zone i that q sees: \f$ u_{k+1} - u_k \f$, or with the
+  /// homologous limiter in a curved geometry its part that a flow \f$ u \propto r \f$ does
+  /// not explain.
+  double velocity_jump(const Vector& r, const Vector& u, std::size_t i) const {
+    const double du = u[i + 1] - u[i];
+    if (!options_.viscosity.homologous_limiter || geometry_ == Geometry::planar) return du;
+    const double r_bar = 0.5 * (r[i] + r[i + 1]);
+    const double u_bar = 0.5 * (u[i] + u[i + 1]);
+    if (!(r_bar > 0)) return du;
+    const double deviation = du - u_bar / r_bar * (r[i + 1] - r[i]);
+    // (a deviation at the level of round-off is none: otherwise the linear term's time-step
+    // limit would switch on and off with the last bits)
+    return std::abs(deviation) > 1e-10 * std::abs(du) ? deviation : 0.0;
   }
 
   /// The hydrodynamic force \f$ A_k(\Pi_{k-1} - \Pi_k) \f$ on every node, with the areas
@@ -676,7 +696,11 @@ class Lagrangian1D {
     for (std::size_t i = 0; i < N; ++i) {
       const double du = u_[i + 1] - u_[i];
       double speed = c_[i];
-      if (du < 0.0) speed += -du + (q ? 2.0 * (cq2 * (-du) + cl * c_[i]) : 0.0);
+      if (du < 0.0) speed += -du;
+      // (q's own limit with the jump q sees: with the homologous limiter, none in a
+      // self-similar compression)
+      const double dq = q ? std::min(velocity_jump(r_, u_, i), 0.0) : 0.0;
+      if (dq < 0.0) speed += 2.0 * (cq2 * (-dq) + cl * c_[i]);
       inverse_dt = std::max(inverse_dt, speed / (r_[i + 1] - r_[i]));
     }
     // Nodes: dt^2 |a| < width, with the narrower neighbouring zone.
