@@ -391,15 +391,20 @@ struct VnrCensus {
   double fraction() const { return supersonic > 0 ? double(on) / double(supersonic) : 0.0; }
 };
 
-/// The census of the term RestrictedVonNeumannRichtmyer of a simulation, at its last evaluation.
-template <class Sim>
-VnrCensus vnr_census(const Sim& sim) {
+/// The census of the term RestrictedVonNeumannRichtmyer of a simulation, at its last evaluation,
+/// over the pairs whose particle i satisfies `include(i)` (all by default).
+struct EveryParticle {
+  bool operator()(std::size_t) const { return true; }
+};
+template <class Sim, class Include = EveryParticle>
+VnrCensus vnr_census(const Sim& sim, const Include& include = {}) {
   constexpr int D = Sim::D;
   const auto in = sim.view();
   const auto& list = sim.neighbours();
   const auto& term = sim.template term<RestrictedVonNeumannRichtmyer>();
   VnrCensus census;
   for (std::size_t i = 0; i < sim.particles().size(); ++i) {
+    if (!include(i)) continue;
     for (const auto& nb : list.of(i)) {
       const Pair<D> pair = pair_geometry<D, typename Sim::K>(in, i, nb);
       if (!(pair.rv < 0) || !(pair.r2 < pair.support2)) continue;
