@@ -9,6 +9,8 @@
 #include "sph/simulation.hpp"
 #include "sph/terms/pressure.hpp"
 #include "sph/viscosity/monaghan_gingold_1983.hpp"
+#include "sph/viscosity/morris_monaghan_1997.hpp"
+#include "sph/viscosity/selhammar_1997.hpp"
 
 #include <omp.h>
 
@@ -48,7 +50,20 @@ struct SodWithFields : sph::Scene<D> {
   using Terms = sph::Terms<sph::PressureHernquistKatz, sph::MonaghanGingold1983, AsksForVelocityFields>;
 };
 
-// Sod's tube in D dimensions, left spacing as given, with the Monaghan-Gingold viscosity.
+// The other viscosities of chapter 5: Selhammar's modified viscosity (restricted vNR term and
+// collective term, with their density rate and gradient pass) and the Morris-Monaghan switch.
+template <int D>
+struct SodModified : sph::Scene<D> {
+  using Terms = sph::Terms<sph::PressureHernquistKatz, sph::RestrictedVonNeumannRichtmyer,
+                           sph::SelhammarCollective<D>>;
+};
+template <int D>
+struct SodSwitch : sph::Scene<D> {
+  using Terms = sph::Terms<sph::PressureHernquistKatz, sph::MorrisMonaghan1997>;
+};
+
+// Sod's tube in D dimensions, left spacing as given, with the scene's terms at their default
+// parameters (the Monaghan-Gingold viscosity: alpha = 1, beta = 2).
 template <int D, class Scene = Sod<D>>
 std::unique_ptr<sph::Simulation<Scene>> make_sod(double left_spacing, const sph::SmoothingLengthRule& rule) {
   sph::ShockTubeSetup setup = sph::ShockTubeSetup::sod();
@@ -57,7 +72,7 @@ std::unique_ptr<sph::Simulation<Scene>> make_sod(double left_spacing, const sph:
   settings.smoothing = rule;
   const auto tube = sph::make_shock_tube<D>(setup, rule);
   return std::make_unique<sph::Simulation<Scene>>(tube.particles, tube.box, sph::IdealGas(setup.gamma),
-                                            sph::MonaghanGingold1983{1.0, 2.0}, settings);
+                                                  typename Scene::Terms{}, settings);
 }
 
 // Run `steps` steps of a Sod tube in D dimensions with the given threads.
@@ -152,6 +167,13 @@ inline void bench_hydro(bool quick) {
   std::printf("3D %8zu  with rho-dot, div v, curl v named: %.3f us/p-step against %.3f without (%d thr, %+.0f %%)\n",
               fields.particles, fields.us_per_particle_step, plain.us_per_particle_step, threads,
               100.0 * (fields.us_per_particle_step / plain.us_per_particle_step - 1.0));
+  // Chapter 5's viscosities against the standard one (target: the modified step <= 1.3 times).
+  const StepCost modified = time_sod_steps<3, SodModified<3>>(spacing, rule, threads, steps);
+  const StepCost with_switch = time_sod_steps<3, SodSwitch<3>>(spacing, rule, threads, steps);
+  std::printf("3D %8zu  Selhammar's modified viscosity: %.3f us/p-step (%.2f x the standard); Morris-Monaghan "
+              "switch: %.3f (%.2f x)\n", modified.particles, modified.us_per_particle_step,
+              modified.us_per_particle_step / plain.us_per_particle_step, with_switch.us_per_particle_step,
+              with_switch.us_per_particle_step / plain.us_per_particle_step);
 }
 
 }  // namespace bench
