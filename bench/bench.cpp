@@ -19,7 +19,8 @@ int main(int argc, char** argv) {
   bool quick = false;
   std::string only;
   app.add_flag("--quick", quick, "small sizes, a few seconds (for smoke tests)");
-  app.add_option("--only", only, "run one part: neighbours or hydro")->check(CLI::IsMember({"neighbours", "hydro"}));
+  app.add_option("--only", only, "run one part: neighbours or hydro")
+      ->check(CLI::IsMember({"neighbours", "hydro"}));
   CLI11_PARSE(app, argc, argv);
   std::printf("SPH course benchmark: %d hardware threads\n", omp_get_num_procs());
 #ifdef SPH_BENCH_NEIGHBOURS

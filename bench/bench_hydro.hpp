@@ -47,7 +47,8 @@ struct AsksForVelocityFields {
 };
 template <int D>
 struct SodWithFields : sph::Scene<D> {
-  using Terms = sph::Terms<sph::PressureHernquistKatz, sph::MonaghanGingold1983, AsksForVelocityFields>;
+  using Terms =
+      sph::Terms<sph::PressureHernquistKatz, sph::MonaghanGingold1983, AsksForVelocityFields>;
 };
 
 // The other viscosities of chapter 5: Selhammar's modified viscosity (restricted vNR term and
@@ -65,20 +66,21 @@ struct SodSwitch : sph::Scene<D> {
 // Sod's tube in D dimensions, left spacing as given, with the scene's terms at their default
 // parameters (the Monaghan-Gingold viscosity: alpha = 1, beta = 2).
 template <int D, class Scene = Sod<D>>
-std::unique_ptr<sph::Simulation<Scene>> make_sod(double left_spacing, const sph::SmoothingLengthRule& rule) {
+std::unique_ptr<sph::Simulation<Scene>> make_sod(double left_spacing,
+                                                 const sph::SmoothingLengthRule& rule) {
   sph::ShockTubeSetup setup = sph::ShockTubeSetup::sod();
   setup.left_spacing = left_spacing;
   sph::Settings settings;
   settings.smoothing = rule;
   const auto tube = sph::make_shock_tube<D>(setup, rule);
-  return std::make_unique<sph::Simulation<Scene>>(tube.particles, tube.box, sph::IdealGas(setup.gamma),
-                                                  typename Scene::Terms{}, settings);
+  return std::make_unique<sph::Simulation<Scene>>(
+      tube.particles, tube.box, sph::IdealGas(setup.gamma), typename Scene::Terms{}, settings);
 }
 
 // Run `steps` steps of a Sod tube in D dimensions with the given threads.
 template <int D, class Scene = Sod<D>>
-StepCost time_sod_steps(double left_spacing, const sph::SmoothingLengthRule& rule, int threads, int steps,
-                        sph::Particles<D>* final_state = nullptr) {
+StepCost time_sod_steps(double left_spacing, const sph::SmoothingLengthRule& rule, int threads,
+                        int steps, sph::Particles<D>* final_state = nullptr) {
   omp_set_num_threads(threads);
   const auto simulation = make_sod<D, Scene>(left_spacing, rule);
   auto& sim = *simulation;
@@ -89,7 +91,8 @@ StepCost time_sod_steps(double left_spacing, const sph::SmoothingLengthRule& rul
     sim.step();
     entries += static_cast<double>(sim.neighbours().entries());
   }
-  const double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+  const double seconds =
+      std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
   StepCost cost;
   cost.particles = sim.particles().size();
   cost.neighbours = entries / steps / static_cast<double>(cost.particles);
@@ -102,7 +105,8 @@ StepCost time_sod_steps(double left_spacing, const sph::SmoothingLengthRule& rul
 template <int D>
 bool same_state(const sph::Particles<D>& a, const sph::Particles<D>& b) {
   for (std::size_t i = 0; i < a.size(); ++i) {
-    if (a.position[i] != b.position[i] || a.velocity[i] != b.velocity[i] || a.internal_energy[i] != b.internal_energy[i])
+    if (a.position[i] != b.position[i] || a.velocity[i] != b.velocity[i] ||
+        a.internal_energy[i] != b.internal_energy[i])
       return false;
   }
   return a.size() == b.size();
@@ -110,22 +114,24 @@ bool same_state(const sph::Particles<D>& a, const sph::Particles<D>& b) {
 
 // One line of the table: 1 thread, then all threads, and whether the two agree bitwise.
 template <int D>
-void report_sod(const char* label, double left_spacing, const sph::SmoothingLengthRule& rule, int steps,
-                const char* reference) {
+void report_sod(const char* label, double left_spacing, const sph::SmoothingLengthRule& rule,
+                int steps, const char* reference) {
   const int threads = omp_get_num_procs();
   sph::Particles<D> one, all;
   const StepCost serial = time_sod_steps<D>(left_spacing, rule, 1, steps, &one);
   const StepCost parallel = time_sod_steps<D>(left_spacing, rule, threads, steps, &all);
-  std::printf("%-4s %8zu %7.1f %10.3f %10.3f %9.1f %9.1f   %-9s %s\n", label, serial.particles, serial.neighbours,
-              serial.us_per_particle_step, parallel.us_per_particle_step, serial.ns_per_pair, parallel.ns_per_pair,
-              same_state(one, all) ? "yes" : "NO", reference);
+  std::printf("%-4s %8zu %7.1f %10.3f %10.3f %9.1f %9.1f   %-9s %s\n", label, serial.particles,
+              serial.neighbours, serial.us_per_particle_step, parallel.us_per_particle_step,
+              serial.ns_per_pair, parallel.ns_per_pair, same_state(one, all) ? "yes" : "NO",
+              reference);
 }
 
 // A whole run to t = 0.2 with all threads: the mean cost per particle-step over the run.  The
 // 40 timed steps above come early, while most of the gas still rests and keeps its neighbour
 // candidates (see NeighbourSearch::try_reuse); later more of it moves and is searched again.
 template <int D>
-void report_whole_run(const char* label, double left_spacing, const sph::SmoothingLengthRule& rule) {
+void report_whole_run(const char* label, double left_spacing,
+                      const sph::SmoothingLengthRule& rule) {
   const int threads = omp_get_num_procs();
   omp_set_num_threads(threads);
   const auto simulation = make_sod<D>(left_spacing, rule);
@@ -133,47 +139,63 @@ void report_whole_run(const char* label, double left_spacing, const sph::Smoothi
   const auto start = std::chrono::steady_clock::now();
   const double t_end = 0.2;  // Sod's time
   sim.run_until(t_end);
-  const double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+  const double seconds =
+      std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
   const auto& search = sim.neighbour_search();
-  std::printf("%-4s %8zu  whole run to t = %.2f: %ld steps, %.1f s, %.3f us/p-step (%d thr); neighbour search: %ld of %ld "
-              "updates searched, %.1f %% of the particles per step\n",
-              label, sim.particles().size(), t_end, sim.steps(), seconds,
-              1e6 * seconds / static_cast<double>(sim.steps()) / static_cast<double>(sim.particles().size()), threads,
-              search.searches(), search.searches() + search.reuses(),
-              100.0 * static_cast<double>(search.particle_searches()) /
-                  static_cast<double>(search.searches() + search.reuses()) / static_cast<double>(sim.particles().size()));
+  std::printf(
+      "%-4s %8zu  whole run to t = %.2f: %ld steps, %.1f s, %.3f us/p-step (%d thr); neighbour "
+      "search: %ld of %ld "
+      "updates searched, %.1f %% of the particles per step\n",
+      label, sim.particles().size(), t_end, sim.steps(), seconds,
+      1e6 * seconds / static_cast<double>(sim.steps()) /
+          static_cast<double>(sim.particles().size()),
+      threads, search.searches(), search.searches() + search.reuses(),
+      100.0 * static_cast<double>(search.particle_searches()) /
+          static_cast<double>(search.searches() + search.reuses()) /
+          static_cast<double>(sim.particles().size()));
 }
 
 inline void bench_hydro(bool quick) {
   const int steps = quick ? 5 : 40;
   const int threads = omp_get_num_procs();
-  std::printf("\nHydrodynamic step, Sod tube with Monaghan-Gingold AV (alpha 1, beta 2), %d steps timed\n", steps);
-  std::printf("%-4s %8s %7s %10s %10s %9s %9s   %-9s %s\n", "dim", "N", "ngb", "us/p-step", "us/p-step", "ns/pair",
-              "ns/pair", "bitwise", "reference (mature code, 1 thread)");
-  std::printf("%-4s %8s %7s %10s %10s %9s %9s   %-9s\n", "", "", "", "1 thread", (std::to_string(threads) + " thr").c_str(),
-              "1 thread", (std::to_string(threads) + " thr").c_str(), "1 = N thr");
-  report_sod<1>("1D", quick ? 1.0 / 800 : 1.0 / 25600, sph::SmoothingLengthRule::from_density(4.0), steps,
-                "0.38 us/p-step; target <= 0.15 (2 threads)");
-  report_sod<2>("2D", quick ? 1.0 / 80 : 1.0 / 320, sph::SmoothingLengthRule::neighbour_number(20, 2), steps, "");
-  report_sod<3>("3D", quick ? 1.0 / 40 : 1.0 / 160, sph::SmoothingLengthRule::neighbour_number(60, 3), steps,
+  std::printf(
+      "\nHydrodynamic step, Sod tube with Monaghan-Gingold AV (alpha 1, beta 2), %d steps timed\n",
+      steps);
+  std::printf("%-4s %8s %7s %10s %10s %9s %9s   %-9s %s\n", "dim", "N", "ngb", "us/p-step",
+              "us/p-step", "ns/pair", "ns/pair", "bitwise", "reference (mature code, 1 thread)");
+  std::printf("%-4s %8s %7s %10s %10s %9s %9s   %-9s\n", "", "", "", "1 thread",
+              (std::to_string(threads) + " thr").c_str(), "1 thread",
+              (std::to_string(threads) + " thr").c_str(), "1 = N thr");
+  report_sod<1>("1D", quick ? 1.0 / 800 : 1.0 / 25600, sph::SmoothingLengthRule::from_density(4.0),
+                steps, "0.38 us/p-step; target <= 0.15 (2 threads)");
+  report_sod<2>("2D", quick ? 1.0 / 80 : 1.0 / 320,
+                sph::SmoothingLengthRule::neighbour_number(20, 2), steps, "");
+  report_sod<3>("3D", quick ? 1.0 / 40 : 1.0 / 160,
+                sph::SmoothingLengthRule::neighbour_number(60, 3), steps,
                 "14 us/p-step at ~55 ngb; target <= 0.5 (2 threads)");
-  if (!quick) report_whole_run<3>("3D", 1.0 / 160, sph::SmoothingLengthRule::neighbour_number(60, 3));
+  if (!quick)
+    report_whole_run<3>("3D", 1.0 / 160, sph::SmoothingLengthRule::neighbour_number(60, 3));
   // What a term costs when it is named: the same 3D tube with rho-dot, div v and curl v summed
   // in the density loop (a scene that does not name them runs the plain loop above).
   const double spacing = quick ? 1.0 / 40 : 1.0 / 160;
   const auto rule = sph::SmoothingLengthRule::neighbour_number(60, 3);
   const StepCost plain = time_sod_steps<3>(spacing, rule, threads, steps);
   const StepCost fields = time_sod_steps<3, SodWithFields<3>>(spacing, rule, threads, steps);
-  std::printf("3D %8zu  with rho-dot, div v, curl v named: %.3f us/p-step against %.3f without (%d thr, %+.0f %%)\n",
-              fields.particles, fields.us_per_particle_step, plain.us_per_particle_step, threads,
-              100.0 * (fields.us_per_particle_step / plain.us_per_particle_step - 1.0));
+  std::printf(
+      "3D %8zu  with rho-dot, div v, curl v named: %.3f us/p-step against %.3f without (%d thr, "
+      "%+.0f %%)\n",
+      fields.particles, fields.us_per_particle_step, plain.us_per_particle_step, threads,
+      100.0 * (fields.us_per_particle_step / plain.us_per_particle_step - 1.0));
   // Chapter 5's viscosities against the standard one (target: the modified step <= 1.3 times).
   const StepCost modified = time_sod_steps<3, SodModified<3>>(spacing, rule, threads, steps);
   const StepCost with_switch = time_sod_steps<3, SodSwitch<3>>(spacing, rule, threads, steps);
-  std::printf("3D %8zu  Selhammar's modified viscosity: %.3f us/p-step (%.2f x the standard); Morris-Monaghan "
-              "switch: %.3f (%.2f x)\n", modified.particles, modified.us_per_particle_step,
-              modified.us_per_particle_step / plain.us_per_particle_step, with_switch.us_per_particle_step,
-              with_switch.us_per_particle_step / plain.us_per_particle_step);
+  std::printf(
+      "3D %8zu  Selhammar's modified viscosity: %.3f us/p-step (%.2f x the standard); "
+      "Morris-Monaghan "
+      "switch: %.3f (%.2f x)\n",
+      modified.particles, modified.us_per_particle_step,
+      modified.us_per_particle_step / plain.us_per_particle_step, with_switch.us_per_particle_step,
+      with_switch.us_per_particle_step / plain.us_per_particle_step);
 }
 
 }  // namespace bench

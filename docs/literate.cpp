@@ -192,15 +192,15 @@ void emit_code(Page& page, std::vector<CodeLine>& code) {
 // ---- Chapters ---------------------------------------------------------------------------------
 
 struct Chapter {
-  std::string dir;                      ///< "01-kernel"
-  fs::path program;                     ///< chapters/01-kernel/kernel.cpp (full path)
-  std::string shown;                    ///< "chapters/01-kernel/kernel.cpp", for messages
-  std::vector<fs::path> helpers;        ///< the other .cpp/.hpp/.h files of the chapter
-  std::string page;                     ///< "ch01"
-  std::string title;                    ///< "Chapter 01: The smoothing kernel"
-  std::vector<std::string> builds_on;   ///< page names
-  std::string gallery_image;            ///< the first figure shown on the page (copied name)
-  fs::path gallery_source;              ///< ... and where it came from
+  std::string dir;                     ///< "01-kernel"
+  fs::path program;                    ///< chapters/01-kernel/kernel.cpp (full path)
+  std::string shown;                   ///< "chapters/01-kernel/kernel.cpp", for messages
+  std::vector<fs::path> helpers;       ///< the other .cpp/.hpp/.h files of the chapter
+  std::string page;                    ///< "ch01"
+  std::string title;                   ///< "Chapter 01: The smoothing kernel"
+  std::vector<std::string> builds_on;  ///< page names
+  std::string gallery_image;           ///< the first figure shown on the page (copied name)
+  fs::path gallery_source;             ///< ... and where it came from
 };
 
 struct Settings {
@@ -443,8 +443,9 @@ Page convert(const Settings& settings, std::vector<Chapter>& chapters, std::size
     page.add("\\endverbatim");
     page.add("");
   } else {
-    page.add("<em>This chapter has not been run yet: `scripts/figures.sh` runs every chapter and "
-             "puts its output and figures here.</em>");
+    page.add(
+        "<em>This chapter has not been run yet: `scripts/figures.sh` runs every chapter and "
+        "puts its output and figures here.</em>");
     page.add("");
   }
   const fs::path results = chapter.program.parent_path() / "results.md";
@@ -482,8 +483,8 @@ void explain(const fs::path& work, const fs::path& log) {
       const std::string page = match[2].str();
       const fs::path map = work / "origins" / (page + ".txt");
       if (!origins.count(page)) {
-        origins[page] = fs::is_regular_file(map) ? split_lines(read_file(map))
-                                                 : std::vector<std::string>{};
+        origins[page] =
+            fs::is_regular_file(map) ? split_lines(read_file(map)) : std::vector<std::string>{};
       }
       const std::size_t number = std::stoul(match[3].str());
       const auto& map_lines = origins[page];
@@ -554,11 +555,20 @@ std::string escape_html(const std::string& text) {
   std::string out;
   for (char c : text) {
     switch (c) {
-      case '&': out += "&amp;"; break;
-      case '<': out += "&lt;"; break;
-      case '>': out += "&gt;"; break;
-      case '"': out += "&quot;"; break;
-      default: out += c;
+      case '&':
+        out += "&amp;";
+        break;
+      case '<':
+        out += "&lt;";
+        break;
+      case '>':
+        out += "&gt;";
+        break;
+      case '"':
+        out += "&quot;";
+        break;
+      default:
+        out += c;
     }
   }
   return out;
@@ -653,13 +663,20 @@ Settings read_arguments(int argc, char** argv) {
       if (i + 1 >= argc) throw std::runtime_error(arg + " needs a value\n" + usage);
       return argv[++i];
     };
-    if (arg == "--chapters") settings.chapters = value();
-    else if (arg == "--figures") settings.figures = value();
-    else if (arg == "--mainpage") settings.mainpage = value();
-    else if (arg == "--work") settings.work = value();
-    else if (arg == "--explain") settings.explain = value();
-    else if (arg == "--strict") settings.strict = true;
-    else throw std::runtime_error("unknown argument " + arg + "\n" + usage);
+    if (arg == "--chapters")
+      settings.chapters = value();
+    else if (arg == "--figures")
+      settings.figures = value();
+    else if (arg == "--mainpage")
+      settings.mainpage = value();
+    else if (arg == "--work")
+      settings.work = value();
+    else if (arg == "--explain")
+      settings.explain = value();
+    else if (arg == "--strict")
+      settings.strict = true;
+    else
+      throw std::runtime_error("unknown argument " + arg + "\n" + usage);
   }
   const bool explaining = !settings.explain.empty() && !settings.work.empty();
   if (!explaining && (settings.chapters.empty() || settings.figures.empty() ||

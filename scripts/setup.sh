@@ -11,7 +11,7 @@ SPH_JOBS="${JOBS:-$(nproc 2>/dev/null || echo 2)}"
 
 # What the build needs beyond git, cmake and g++ (make: cmake only recommends it).
 SPH_PACKAGES=(make pkg-config libeigen3-dev libpng-dev libfreetype-dev fonts-dejavu-core
-              libosmesa6-dev libcli11-dev catch2 doxygen libjs-mathjax)
+              libosmesa6-dev libcli11-dev catch2 doxygen libjs-mathjax clang-format)
 
 sph_step() { printf '\n==> %s\n' "$*"; }
 

@@ -100,20 +100,26 @@ double integrate_pieces(F f, int intervals) {
 }
 
 /// The surface of the unit sphere in D dimensions: 2, \f$ 2\pi \f$, \f$ 4\pi \f$.
-constexpr double unit_sphere_surface(int dimension) { return dimension == 1 ? 2.0 : dimension == 2 ? 2.0 * pi : 4.0 * pi; }
+constexpr double unit_sphere_surface(int dimension) {
+  return dimension == 1 ? 2.0 : dimension == 2 ? 2.0 * pi : 4.0 * pi;
+}
 
 /// \f$ \int W\,dV \f$ for kernel K at smoothing length h: the normalisation test.  We integrate
 /// the dimensional W (not the shape) so that the library's \f$ h^{-D} \f$ is tested too.
 template <int D, class K>
 double kernel_integral(double h, int intervals) {
   return unit_sphere_surface(D) * h *
-         integrate_pieces([&](double q) { return K::value(q * h, h) * std::pow(q * h, D - 1); }, intervals);
+         integrate_pieces([&](double q) { return K::value(q * h, h) * std::pow(q * h, D - 1); },
+                          intervals);
 }
 
 /// \f$ \int r^2 W\, dV / h^2 \f$: the kernel's second moment in units of \f$ h^2 \f$.
 template <int D, class K>
 double second_moment(int intervals) {
-  return unit_sphere_surface(D) * K::sigma * integrate_pieces([](double q) { return q * q * K::shape::evaluate(q).w * std::pow(q, D - 1); }, intervals);
+  return unit_sphere_surface(D) * K::sigma *
+         integrate_pieces(
+             [](double q) { return q * q * K::shape::evaluate(q).w * std::pow(q, D - 1); },
+             intervals);
 }
 
 /// \section ch01_fourier Step 2: the Fourier transform
@@ -131,10 +137,13 @@ double fourier_transform(double kh, int intervals) {
   static_assert(D == 1 || D == 3, "the radial transforms are written for 1D and 3D");
   const double h = 1.0;
   if constexpr (D == 1) {
-    return 2.0 * h * integrate_pieces([&](double q) { return K::value(q, h) * std::cos(kh * q); }, intervals);
+    return 2.0 * h *
+           integrate_pieces([&](double q) { return K::value(q, h) * std::cos(kh * q); }, intervals);
   } else {
     auto sinc = [](double x) { return std::abs(x) < 1e-8 ? 1.0 - x * x / 6.0 : std::sin(x) / x; };
-    return 4.0 * pi * integrate_pieces([&](double q) { return K::value(q, h) * sinc(kh * q) * q * q; }, intervals);
+    return 4.0 * pi *
+           integrate_pieces([&](double q) { return K::value(q, h) * sinc(kh * q) * q * q; },
+                            intervals);
   }
 }
 
@@ -172,13 +181,15 @@ double worst_gradient_error(int samples) {
 struct Row {
   std::string kernel;
   int dimension;
-  double shape_integral, sigma_from_integral, sigma_library, sigma_reference, volume_integral, gradient_error, moment;
+  double shape_integral, sigma_from_integral, sigma_library, sigma_reference, volume_integral,
+      gradient_error, moment;
 };
 
 template <int D, class K>
 Row normalisation_row(const std::string& name, double sigma_reference, int intervals) {
   Row row{name, D, 0, 0, 0, sigma_reference, 0, 0, 0};
-  row.shape_integral = integrate_pieces([](double q) { return K::shape::evaluate(q).w * std::pow(q, D - 1); }, intervals);
+  row.shape_integral = integrate_pieces(
+      [](double q) { return K::shape::evaluate(q).w * std::pow(q, D - 1); }, intervals);
   row.sigma_from_integral = 1.0 / (unit_sphere_surface(D) * row.shape_integral);
   row.sigma_library = K::sigma;
   row.volume_integral = kernel_integral<D, K>(0.37, intervals);
@@ -215,15 +226,18 @@ Curves kernel_curves(int samples) {
 }
 
 template <int D, class K>
-void draw_kernel(plot::Figure& figure, int samples, plot::Color color, plot::Dash dash, const std::string& label) {
+void draw_kernel(plot::Figure& figure, int samples, plot::Color color, plot::Dash dash,
+                 const std::string& label) {
   const Curves c = kernel_curves<D, K>(samples);
   figure.panel(0).line(c.q, c.value, {.label = label, .color = color, .style = dash, .width = 2.0});
   figure.panel(1).line(c.q, c.slope, {.label = label, .color = color, .style = dash, .width = 2.0});
-  figure.panel(2).line(c.q, c.weight, {.label = label, .color = color, .style = dash, .width = 2.0});
+  figure.panel(2).line(c.q, c.weight,
+                       {.label = label, .color = color, .style = dash, .width = 2.0});
 }
 
 template <int D, class K>
-void draw_fourier(plot::Axes& axes, int samples, int intervals, plot::Color color, plot::Dash dash, const std::string& label) {
+void draw_fourier(plot::Axes& axes, int samples, int intervals, plot::Color color, plot::Dash dash,
+                  const std::string& label) {
   std::vector<double> kh, transform;
   for (int k = 0; k <= samples; ++k) {
     kh.push_back(20.0 * k / samples);
@@ -269,7 +283,8 @@ int main(int argc, char** argv) {
     app::Chapter chapter("01-kernel", "Chapter 1: The smoothing kernel", argc, argv);
     int intervals = 2000;
     chapter.parameter("--intervals", intervals, "Simpson intervals per kernel piece (even)")
-        .check(app::require<int>([](int n) { return n >= 2 && n % 2 == 0; }, "must be even and at least 2"));
+        .check(app::require<int>([](int n) { return n >= 2 && n % 2 == 0; },
+                                 "must be even and at least 2"));
     if (int rc = chapter.parse(); rc >= 0) return rc;
     if (chapter.quick()) intervals = std::min(intervals, 400);
     const int samples = chapter.quick() ? 200 : 800;
@@ -292,29 +307,34 @@ int main(int argc, char** argv) {
     };
     std::printf("Normalisation of the kernels, W = sigma_D / h^D w(r/h), support 2h\n\n");
     std::printf("%-12s %2s %14s %14s %14s %14s %18s %12s %10s\n", "kernel", "D", "I_D=int w q^D-1",
-                "1/(S_D I_D)", "sigma (lib)", "sigma (ref)", "int W dV - 1", "grad error", "<r^2>/h^2");
+                "1/(S_D I_D)", "sigma (lib)", "sigma (ref)", "int W dV - 1", "grad error",
+                "<r^2>/h^2");
     for (const Row& r : rows) {
-      std::printf("%-12s %2d %14.10f %14.10f %14.10f %14.10f %18.3e %12.2e %10.6f\n", r.kernel.c_str(), r.dimension,
-                  r.shape_integral, r.sigma_from_integral, r.sigma_library, r.sigma_reference, r.volume_integral - 1.0,
-                  r.gradient_error, r.moment);
+      std::printf("%-12s %2d %14.10f %14.10f %14.10f %14.10f %18.3e %12.2e %10.6f\n",
+                  r.kernel.c_str(), r.dimension, r.shape_integral, r.sigma_from_integral,
+                  r.sigma_library, r.sigma_reference, r.volume_integral - 1.0, r.gradient_error,
+                  r.moment);
       const std::string who = r.kernel + " in " + std::to_string(r.dimension) + "D";
-      chapter.check(std::abs(r.volume_integral - 1.0) < 1e-10,
-                    who + ": int W dV = " + format("%.15f", r.volume_integral) + ", expected 1 to 1e-10");
+      chapter.check(
+          std::abs(r.volume_integral - 1.0) < 1e-10,
+          who + ": int W dV = " + format("%.15f", r.volume_integral) + ", expected 1 to 1e-10");
       chapter.check(std::abs(r.sigma_library / r.sigma_reference - 1.0) < 1e-14,
-                    who + ": library sigma " + format("%.15f", r.sigma_library) + " differs from the reference " +
-                        format("%.15f", r.sigma_reference));
+                    who + ": library sigma " + format("%.15f", r.sigma_library) +
+                        " differs from the reference " + format("%.15f", r.sigma_reference));
       chapter.check(std::abs(r.sigma_from_integral / r.sigma_library - 1.0) < 1e-10,
                     who + ": sigma from the quadrature " + format("%.15f", r.sigma_from_integral) +
                         " differs from the library's");
       chapter.check(r.gradient_error < 1e-6, who + ": dW/dr differs from finite differences by " +
-                                                 format("%.2e", r.gradient_error) + " (relative), limit 1e-6");
+                                                 format("%.2e", r.gradient_error) +
+                                                 " (relative), limit 1e-6");
     }
     // The exact shape integrals of the M4 quoted in the text: 3/4, 7/20, 1/4.
     const double exact_integrals[] = {0.75, 0.35, 0.25};
     for (int d = 0; d < 3; ++d) {
       chapter.check(std::abs(rows[d].shape_integral - exact_integrals[d]) < 1e-10,
-                    "M4 shape integral I_" + std::to_string(d + 1) + " = " + format("%.15f", rows[d].shape_integral) +
-                        ", expected " + format("%.4f", exact_integrals[d]));
+                    "M4 shape integral I_" + std::to_string(d + 1) + " = " +
+                        format("%.15f", rows[d].shape_integral) + ", expected " +
+                        format("%.4f", exact_integrals[d]));
     }
 
     /// The second moment \f$ \langle r^2 \rangle = \int r^2 W\, dV \f$ sets the leading
@@ -331,27 +351,37 @@ int main(int argc, char** argv) {
     for (int k = 1; k <= 400; ++k) {
       const double kh = 0.05 * k;
       const double bspline = std::pow(std::sin(kh / 2) / (kh / 2), 4);
-      worst_fourier = std::max(worst_fourier, std::abs(fourier_transform<1, M4_1>(kh, intervals) - bspline));
+      worst_fourier =
+          std::max(worst_fourier, std::abs(fourier_transform<1, M4_1>(kh, intervals) - bspline));
     }
     double m4_min = 1, m4_at = 0, c2_min = 1;
     for (int k = 1; k <= 2000; ++k) {
       const double kh = 0.01 * k;
-      const double m4 = fourier_transform<3, M4_3>(kh, intervals), c2 = fourier_transform<3, C2_3>(kh, intervals);
+      const double m4 = fourier_transform<3, M4_3>(kh, intervals),
+                   c2 = fourier_transform<3, C2_3>(kh, intervals);
       if (m4 < m4_min) {
         m4_min = m4;
         m4_at = kh;
       }
       c2_min = std::min(c2_min, c2);
     }
-    std::printf("\nFourier transform of the M4 in 1D against (sin(kh/2)/(kh/2))^4, 0 < kh <= 20: "
-                "largest difference %.2e\n", worst_fourier);
-    std::printf("Smallest value of the 3D transform for 0 < kh <= 20: M4 %.3e (at kh = %.2f), Wendland C2 %.3e\n",
-                m4_min, m4_at, c2_min);
-    chapter.check(worst_fourier < 1e-9, "1D M4 transform differs from the B-spline formula by " + format("%.2e", worst_fourier));
-    chapter.check(m4_min < -1e-4, "expected a negative lobe of the 3D M4 transform, minimum " + format("%.3e", m4_min));
-    chapter.check(c2_min > -1e-9, "the 3D Wendland C2 transform went negative: " + format("%.3e", c2_min));
+    std::printf(
+        "\nFourier transform of the M4 in 1D against (sin(kh/2)/(kh/2))^4, 0 < kh <= 20: "
+        "largest difference %.2e\n",
+        worst_fourier);
+    std::printf(
+        "Smallest value of the 3D transform for 0 < kh <= 20: M4 %.3e (at kh = %.2f), Wendland C2 "
+        "%.3e\n",
+        m4_min, m4_at, c2_min);
+    chapter.check(worst_fourier < 1e-9, "1D M4 transform differs from the B-spline formula by " +
+                                            format("%.2e", worst_fourier));
+    chapter.check(m4_min < -1e-4, "expected a negative lobe of the 3D M4 transform, minimum " +
+                                      format("%.3e", m4_min));
+    chapter.check(c2_min > -1e-9,
+                  "the 3D Wendland C2 transform went negative: " + format("%.3e", c2_min));
     double worst_integral = 0;
-    for (const Row& r : rows) worst_integral = std::max(worst_integral, std::abs(r.volume_integral - 1.0));
+    for (const Row& r : rows)
+      worst_integral = std::max(worst_integral, std::abs(r.volume_integral - 1.0));
     chapter.summary("error", "max |int W dV - 1| = " + format("%.1e", worst_integral));
     chapter.summary("m4_3d_fourier_min", format("%.4e", m4_min));
 
@@ -369,14 +399,22 @@ int main(int argc, char** argv) {
     figure.panel(0).xlabel("q = r/h").ylabel("h^D W").legend(plot::Corner::upper_right);
     figure.panel(1).xlabel("q = r/h").ylabel("h^{D+1} dW/dr").legend(plot::Corner::lower_right);
     figure.panel(1).hline(0.0, {.color = plot::grey, .style = plot::Dash::dotted, .width = 1.0});
-    figure.panel(2).xlabel("q = r/h").ylabel("S_D q^{D-1} h^D W  (unit area)").legend(plot::Corner::upper_right);
+    figure.panel(2)
+        .xlabel("q = r/h")
+        .ylabel("S_D q^{D-1} h^D W  (unit area)")
+        .legend(plot::Corner::upper_right);
     plot::Axes& fourier = figure.panel(3);
-    draw_fourier<1, M4_1>(fourier, samples, intervals, colours[0], plot::Dash::solid, "M4, 1D = (sin(kh/2)/(kh/2))^4");
+    draw_fourier<1, M4_1>(fourier, samples, intervals, colours[0], plot::Dash::solid,
+                          "M4, 1D = (sin(kh/2)/(kh/2))^4");
     draw_fourier<3, M4_3>(fourier, samples, intervals, colours[2], plot::Dash::solid, "M4, 3D");
     draw_fourier<3, C2_3>(fourier, samples, intervals, colours[2], plot::Dash::dashed, "C2, 3D");
     fourier.hline(0.0, {.color = plot::grey, .style = plot::Dash::dotted, .width = 1.0});
-    fourier.text(m4_at + 0.6, m4_min, "M4 in 3D < 0 near kh = " + format("%.1f", m4_at), {.color = plot::blue});
-    fourier.xlabel("kh").ylabel("Fourier transform of W (tail, magnified)").ylim(-0.002, 0.006).xlim(0, 20);
+    fourier.text(m4_at + 0.6, m4_min, "M4 in 3D < 0 near kh = " + format("%.1f", m4_at),
+                 {.color = plot::blue});
+    fourier.xlabel("kh")
+        .ylabel("Fourier transform of W (tail, magnified)")
+        .ylim(-0.002, 0.006)
+        .xlim(0, 20);
     fourier.legend(plot::Corner::upper_right);
     figure.save_png(chapter.figure_path("kernel.png"));
     std::printf("\nFigure: %s\n", chapter.figure_path("kernel.png").c_str());

@@ -63,9 +63,9 @@ std::string format(const char* pattern, double a, double b = 0, double c = 0) {
 
 /// The parameters of the static tests, set from the command line in `main`.
 struct Setup {
-  int particles = 5000;   // Watkins: 5000
-  double neighbours = 60; // Watkins: 60 in 3D
-  int draws = 20;         // random sets drawn in Step 2
+  int particles = 5000;    // Watkins: 5000
+  double neighbours = 60;  // Watkins: 60 in 3D
+  int draws = 20;          // random sets drawn in Step 2
   bool quick = false;
 };
 
@@ -101,7 +101,8 @@ template <int D>
 sph::Particles<D> unit_box_particles(const std::vector<Vec<D>>& positions, double neighbours) {
   const double mass = 1.0 / static_cast<double>(positions.size());
   sph::Particles<D> p = sph::make_particles<D>(positions, mass);
-  std::fill(p.smoothing_length.begin(), p.smoothing_length.end(), watkins_smoothing_length<D>(mass, neighbours, 1.0));
+  std::fill(p.smoothing_length.begin(), p.smoothing_length.end(),
+            watkins_smoothing_length<D>(mass, neighbours, 1.0));
   return p;
 }
 
@@ -119,8 +120,10 @@ double measure_density(sph::Particles<D>& p, sph::DensityForm form) {
 
 void step1_smoothing_length(const Setup& s) {
   const double mass = 1.0 / s.particles, h = watkins_smoothing_length<3>(mass, s.neighbours, 1.0);
-  std::printf("Step 1: Watkins' constant h (eq A6): N = %d, m = %.3e, N_kernel = %g -> h = %.5f, 2h = %.4f = %.2f mean spacings\n\n",
-              s.particles, mass, s.neighbours, h, 2 * h, 2 * h / std::cbrt(mass));
+  std::printf(
+      "Step 1: Watkins' constant h (eq A6): N = %d, m = %.3e, N_kernel = %g -> h = %.5f, 2h = %.4f "
+      "= %.2f mean spacings\n\n",
+      s.particles, mass, s.neighbours, h, 2 * h, 2 * h / std::cbrt(mass));
 }
 
 /// \section ch02_random Step 2: a random distribution (Watkins Fig. 3a)
@@ -150,7 +153,8 @@ struct Statistics {
 Statistics statistics(const std::vector<double>& values) {
   Statistics s;
   for (double v : values) s.mean += v / static_cast<double>(values.size());
-  for (double v : values) s.spread += (v - s.mean) * (v - s.mean) / static_cast<double>(values.size() - 1);
+  for (double v : values)
+    s.spread += (v - s.mean) * (v - s.mean) / static_cast<double>(values.size() - 1);
   s.spread = std::sqrt(s.spread);
   return s;
 }
@@ -185,7 +189,9 @@ RandomSets step2_random(app::Chapter& chapter, const Setup& s) {
   RandomSets result;
   double mean_with_self = 0;
   for (int draw = 0; draw < s.draws; ++draw) {
-    auto p = unit_box_particles<3>(sph::uniform_random<3>(Vec<3>::Zero(), Vec<3>::Ones(), s.particles, 1 + draw), s.neighbours);
+    auto p = unit_box_particles<3>(
+        sph::uniform_random<3>(Vec<3>::Zero(), Vec<3>::Ones(), s.particles, 1 + draw),
+        s.neighbours);
     measure_density(p, sph::DensityForm::watkins(false));
     const auto scatter = sph::density_scatter(p.density);
     means.push_back(scatter.mean);
@@ -197,24 +203,33 @@ RandomSets step2_random(app::Chapter& chapter, const Setup& s) {
   }
   const Statistics mean_stats = statistics(means), sigma_stats = statistics(sigmas);
   const double h = result.first.smoothing_length[0], mass = result.first.mass[0];
-  const double expected_mean = (s.particles - 1.0) / s.particles, sigma_theory = random_scatter_theory(s.particles, h);
+  const double expected_mean = (s.particles - 1.0) / s.particles,
+               sigma_theory = random_scatter_theory(s.particles, h);
   std::printf("Step 2: random distribution, constant h, self term excluded (Watkins Fig. 3a)\n");
   std::printf("  %-38s %10s %10s\n", "", "mean rho", "sigma_rho");
   std::printf("  %-38s %10.3f %10.3f\n", "Watkins et al. (1996)", 1.013, 0.281);
   std::printf("  %-38s %10.4f %10.4f\n", "this run, first draw", means[0], sigmas[0]);
-  std::printf("  %-38s %10.4f %10.4f\n", ("this run, " + std::to_string(s.draws) + " draws: average").c_str(), mean_stats.mean,
+  std::printf("  %-38s %10.4f %10.4f\n",
+              ("this run, " + std::to_string(s.draws) + " draws: average").c_str(), mean_stats.mean,
               sigma_stats.mean);
-  std::printf("  %-38s %10.4f %10.4f\n", "                  spread between draws", mean_stats.spread, sigma_stats.spread);
+  std::printf("  %-38s %10.4f %10.4f\n", "                  spread between draws",
+              mean_stats.spread, sigma_stats.spread);
   std::printf("  %-38s %10.4f %10.4f\n", "Poisson theory", expected_mean, sigma_theory);
-  std::printf("  first draw with the self term: mean %.4f (the self term m W(0,h) = %.4f)\n", mean_with_self,
-              mass * sph::Kernel<3>::value(0, h));
-  std::printf("  the paper's mean lies %.1f, its sigma %.1f standard deviations of a single draw from our averages\n\n",
-              (1.013 - mean_stats.mean) / mean_stats.spread, (0.281 - sigma_stats.mean) / sigma_stats.spread);
-  chapter.check(std::abs(mean_stats.mean - expected_mean) < 4 * mean_stats.spread / std::sqrt(s.draws) + 1e-3,
-                "random sets: average mean density " + format("%.4f", mean_stats.mean) + " differs from (N-1)/N");
+  std::printf("  first draw with the self term: mean %.4f (the self term m W(0,h) = %.4f)\n",
+              mean_with_self, mass * sph::Kernel<3>::value(0, h));
+  std::printf(
+      "  the paper's mean lies %.1f, its sigma %.1f standard deviations of a single draw from our "
+      "averages\n\n",
+      (1.013 - mean_stats.mean) / mean_stats.spread,
+      (0.281 - sigma_stats.mean) / sigma_stats.spread);
+  chapter.check(
+      std::abs(mean_stats.mean - expected_mean) < 4 * mean_stats.spread / std::sqrt(s.draws) + 1e-3,
+      "random sets: average mean density " + format("%.4f", mean_stats.mean) +
+          " differs from (N-1)/N");
   chapter.check(std::abs(sigma_stats.mean / sigma_theory - 1.0) < 0.1,
-                "random sets: average sigma " + format("%.4f", sigma_stats.mean) + " differs from the Poisson theory " +
-                    format("%.4f", sigma_theory) + " by more than 10 %");
+                "random sets: average sigma " + format("%.4f", sigma_stats.mean) +
+                    " differs from the Poisson theory " + format("%.4f", sigma_theory) +
+                    " by more than 10 %");
   return result;
 }
 
@@ -259,7 +274,8 @@ double closest_pair(sph::Particles<D> p) {
   search.update(p, unit_box<D>(), sph::SmoothingLengthRule::fixed());
   double closest = 1e300;
   for (std::size_t i = 0; i < p.size(); ++i)
-    for (const auto& n : search.list().of(i)) closest = std::min(closest, search.list().separation(p.position, i, n).norm());
+    for (const auto& n : search.list().of(i))
+      closest = std::min(closest, search.list().separation(p.position, i, n).norm());
   return closest / sph::root<D>(1.0 / static_cast<double>(p.size()));
 }
 
@@ -276,22 +292,30 @@ Settled settle(const sph::Particles<3>& start, double gamma) {
 
 std::vector<Settled> step3_settled(app::Chapter& chapter, const RandomSets& random) {
   std::printf("Step 3: the first random set settled to uniform density (Watkins Fig. 1a)\n");
-  std::printf("  %-24s %10s %10s %10s %8s %9s %12s\n", "", "mean rho", "sigma_rho", "sigma/mean", "iter", "time [s]",
-              "closest/dx");
+  std::printf("  %-24s %10s %10s %10s %8s %9s %12s\n", "", "mean rho", "sigma_rho", "sigma/mean",
+              "iter", "time [s]", "closest/dx");
   std::printf("  %-24s %10.3f %10.3f\n", "Watkins et al. (1996)", 0.999, 0.004);
   std::vector<Settled> settled;
   for (double gamma : {1.0, 2.0, 3.0}) {
     const Settled& s = settled.emplace_back(settle(random.first, gamma));
     const std::string who = "settled (gamma " + format("%.0f", gamma) + ")";
-    std::printf("  %-24s %10.4f %10.4f %10.2e %8d %9.2f %12.2f\n", ("relaxed, P ~ rho^" + format("%.0f", gamma)).c_str(),
-                s.report.final.mean, s.report.final.sigma, s.report.final.relative, s.report.iterations, s.seconds, s.closest);
-    chapter.check(s.report.final.relative < 0.01, who + ": sigma/mean " + format("%.2e", s.report.final.relative) + " is not below 1 %");
-    chapter.check(s.closest > 0.3, who + ": closest pair " + format("%.2f", s.closest) + " spacings: particles paired up");
+    std::printf("  %-24s %10.4f %10.4f %10.2e %8d %9.2f %12.2f\n",
+                ("relaxed, P ~ rho^" + format("%.0f", gamma)).c_str(), s.report.final.mean,
+                s.report.final.sigma, s.report.final.relative, s.report.iterations, s.seconds,
+                s.closest);
+    chapter.check(
+        s.report.final.relative < 0.01,
+        who + ": sigma/mean " + format("%.2e", s.report.final.relative) + " is not below 1 %");
+    chapter.check(s.closest > 0.3, who + ": closest pair " + format("%.2f", s.closest) +
+                                       " spacings: particles paired up");
   }
   const sph::DensityScatter& glass = settled[1].report.final;
-  chapter.check(std::abs(glass.mean - 1.0) < 0.005, "settled: mean density " + format("%.4f", glass.mean) + " is not within 0.5 % of 1");
+  chapter.check(
+      std::abs(glass.mean - 1.0) < 0.005,
+      "settled: mean density " + format("%.4f", glass.mean) + " is not within 0.5 % of 1");
   std::printf("  (the rows use the set with the smallest scatter; the figure shows gamma = 2)\n\n");
-  chapter.summary("error", "settled sigma = " + format("%.4f", glass.sigma) + " (paper 0.004), random sigma = " +
+  chapter.summary("error", "settled sigma = " + format("%.4f", glass.sigma) +
+                               " (paper 0.004), random sigma = " +
                                format("%.3f", random.first_sigma) + " (paper 0.281)");
   return settled;
 }
@@ -307,35 +331,56 @@ std::vector<double> coordinate(const sph::Particles<3>& p, int axis) {
   return v;
 }
 
-void draw_watkins_figure(app::Chapter& chapter, const Setup& s, const RandomSets& random, const std::vector<Settled>& settled) {
+void draw_watkins_figure(app::Chapter& chapter, const Setup& s, const RandomSets& random,
+                         const std::vector<Settled>& settled) {
   const Settled& glass = settled[1];
   plot::Figure figure(1, 3, {.width = 2100, .height = 650});
   figure.title("Density at the particle positions, " + std::to_string(s.particles) +
                " particles in a periodic unit box (Watkins et al. 1996, Figs 1a and 3a)");
-  figure.stamp(plot::Stamp{.scheme = "gather density, constant h (eq A6)", .kernel = "M4", .neighbours = s.neighbours,
-                           .particles = s.particles, .run_time = chapter.seconds()});
+  figure.stamp(plot::Stamp{.scheme = "gather density, constant h (eq A6)",
+                           .kernel = "M4",
+                           .neighbours = s.neighbours,
+                           .particles = s.particles,
+                           .run_time = chapter.seconds()});
   plot::Axes& a = figure.panel(0);
-  a.scatter(coordinate(glass.particles, 1), glass.particles.density, {.label = "settled, self term included", .color = plot::black, .size = 2.5});
+  a.scatter(coordinate(glass.particles, 1), glass.particles.density,
+            {.label = "settled, self term included", .color = plot::black, .size = 2.5});
   a.hline(1.0, {.label = "\\rho = 1", .color = plot::red, .style = plot::Dash::dashed});
-  a.xlabel("y [box lengths]").ylabel("\\rho [mean density]").xlim(0, 1).ylim(0.98, 1.02).legend(plot::Corner::upper_right);
-  a.title("settled: mean " + format("%.4f", glass.report.final.mean) + ", \\sigma = " + format("%.4f", glass.report.final.sigma) +
-          " (paper 0.999, 0.004)");
+  a.xlabel("y [box lengths]")
+      .ylabel("\\rho [mean density]")
+      .xlim(0, 1)
+      .ylim(0.98, 1.02)
+      .legend(plot::Corner::upper_right);
+  a.title("settled: mean " + format("%.4f", glass.report.final.mean) +
+          ", \\sigma = " + format("%.4f", glass.report.final.sigma) + " (paper 0.999, 0.004)");
   plot::Axes& b = figure.panel(1);
-  b.scatter(coordinate(random.first, 1), random.first.density, {.label = "random, self term excluded", .color = plot::black, .size = 2.5});
+  b.scatter(coordinate(random.first, 1), random.first.density,
+            {.label = "random, self term excluded", .color = plot::black, .size = 2.5});
   b.hline(1.0, {.label = "\\rho = 1", .color = plot::red, .style = plot::Dash::dashed});
-  b.xlabel("y [box lengths]").ylabel("\\rho [mean density]").xlim(0, 1).ylim(0, 2.2).legend(plot::Corner::upper_right);
-  b.title("random: mean " + format("%.3f", random.first_mean) + ", \\sigma = " + format("%.3f", random.first_sigma) +
-          " (paper 1.013, 0.281)");
+  b.xlabel("y [box lengths]")
+      .ylabel("\\rho [mean density]")
+      .xlim(0, 1)
+      .ylim(0, 2.2)
+      .legend(plot::Corner::upper_right);
+  b.title("random: mean " + format("%.3f", random.first_mean) +
+          ", \\sigma = " + format("%.3f", random.first_sigma) + " (paper 1.013, 0.281)");
   plot::Axes& c = figure.panel(2);
   const plot::Color colours[] = {plot::blue, plot::black, plot::red};
   for (std::size_t k = 0; k < settled.size(); ++k) {
     std::vector<double> iteration;
-    for (std::size_t i = 0; i < settled[k].report.history.size(); ++i) iteration.push_back(static_cast<double>(i));
+    for (std::size_t i = 0; i < settled[k].report.history.size(); ++i)
+      iteration.push_back(static_cast<double>(i));
     c.line(iteration, settled[k].report.history,
-           {.label = "P \\propto \\rho^" + format("%.0f", settled[k].gamma), .color = colours[k], .width = 2.0});
+           {.label = "P \\propto \\rho^" + format("%.0f", settled[k].gamma),
+            .color = colours[k],
+            .width = 2.0});
   }
-  c.hline(0.004, {.label = "Watkins: \\sigma = 0.004", .color = plot::grey, .style = plot::Dash::dashed});
-  c.xlabel("relaxation iteration").ylabel("\\sigma_\\rho / mean \\rho").yscale(plot::Scale::log).legend(plot::Corner::upper_right);
+  c.hline(0.004,
+          {.label = "Watkins: \\sigma = 0.004", .color = plot::grey, .style = plot::Dash::dashed});
+  c.xlabel("relaxation iteration")
+      .ylabel("\\sigma_\\rho / mean \\rho")
+      .yscale(plot::Scale::log)
+      .legend(plot::Corner::upper_right);
   c.title("settling the random set");
   figure.save_png(chapter.figure_path("watkins_density.png"));
 }
@@ -399,11 +444,13 @@ std::pair<double, double> lattice_bias(sph::LatticeType type, double eta) {
     if (type == sph::LatticeType::hexagonal) upper[1] = std::sqrt(3.0) / 2.0;  // regular rows
   }
   const auto x = sph::lattice<D>(type, Vec<D>::Zero(), upper, 1.0 / cells);
-  const double volume = upper.prod(), spacing = sph::root<D>(volume / static_cast<double>(x.size()));
+  const double volume = upper.prod(),
+               spacing = sph::root<D>(volume / static_cast<double>(x.size()));
   sph::Particles<D> p = sph::make_particles<D>(x, volume / static_cast<double>(x.size()));
   std::fill(p.smoothing_length.begin(), p.smoothing_length.end(), eta * spacing);
   sph::NeighbourSearch<D> search;
-  search.update(p, sph::Box<D>::periodic_box(Vec<D>::Zero(), upper), sph::SmoothingLengthRule::fixed());
+  search.update(p, sph::Box<D>::periodic_box(Vec<D>::Zero(), upper),
+                sph::SmoothingLengthRule::fixed());
   sph::compute_density(p, search.list(), sph::DensityForm::watkins());
   const auto [lo, hi] = std::minmax_element(p.density.begin(), p.density.end());
   return {p.density[0] - 1.0, *hi - *lo};
@@ -411,9 +458,12 @@ std::pair<double, double> lattice_bias(sph::LatticeType type, double eta) {
 
 std::pair<double, double> lattice_bias(const LatticeCase& c, double eta) {
   switch (c.dimension) {
-    case 1: return lattice_bias<1>(c.type, eta);
-    case 2: return lattice_bias<2>(c.type, eta);
-    default: return lattice_bias<3>(c.type, eta);
+    case 1:
+      return lattice_bias<1>(c.type, eta);
+    case 2:
+      return lattice_bias<2>(c.type, eta);
+    default:
+      return lattice_bias<3>(c.type, eta);
   }
 }
 
@@ -452,21 +502,31 @@ LatticeScan step4_lattice_bias(app::Chapter& chapter, const Setup& s) {
       worst_spread = std::max(worst_spread, spread);
     }
   }
-  std::printf("Step 4: density bias rho_SPH/rho_0 - 1 of periodic lattices, m = rho_0 dx^D, h = eta dx (dx = mean spacing)\n");
+  std::printf(
+      "Step 4: density bias rho_SPH/rho_0 - 1 of periodic lattices, m = rho_0 dx^D, h = eta dx (dx "
+      "= mean spacing)\n");
   std::printf("  %5s", "eta");
   for (const auto& l : scan.lattices) std::printf(" %14s", l.name);
   std::printf(" %14s %10s\n", "1D Poisson", "N_ngb(3D)");
   for (double eta : {1.0, 1.2, 1.24, 1.5, 2.0}) {
     std::printf("  %5.2f", eta);
-    for (const LatticeCase& lattice : scan.lattices) std::printf(" %13.4f%%", 100 * lattice_bias(lattice, eta).first);
-    std::printf(" %13.4f%% %10.1f\n", 100 * poisson_bias_1d(eta), 4.0 / 3.0 * std::numbers::pi * std::pow(2 * eta, 3));
+    for (const LatticeCase& lattice : scan.lattices)
+      std::printf(" %13.4f%%", 100 * lattice_bias(lattice, eta).first);
+    std::printf(" %13.4f%% %10.1f\n", 100 * poisson_bias_1d(eta),
+                4.0 / 3.0 * std::numbers::pi * std::pow(2 * eta, 3));
   }
   scan.bias_1d_at_1_2 = lattice_bias(scan.lattices[0], 1.2).first;
-  std::printf("  largest spread of the density over one lattice: %.1e (a seamless lattice)\n\n", worst_spread);
+  std::printf("  largest spread of the density over one lattice: %.1e (a seamless lattice)\n\n",
+              worst_spread);
   const double poisson = poisson_bias_1d(1.2), bias = scan.bias_1d_at_1_2;
-  chapter.check(std::abs(bias - poisson) < 1e-12, "1D lattice bias at eta = 1.2: " + format("%.3e", bias) + ", Poisson sum " + format("%.3e", poisson));
-  chapter.check(std::abs(bias - 0.0018) < 0.0001, "1D lattice bias at eta = 1.2 is " + format("%.4f %%", 100 * bias) + ", expected +0.18 %");
-  chapter.check(worst_spread < 1e-10, "a lattice density varies over the particles by " + format("%.1e", worst_spread));
+  chapter.check(std::abs(bias - poisson) < 1e-12,
+                "1D lattice bias at eta = 1.2: " + format("%.3e", bias) + ", Poisson sum " +
+                    format("%.3e", poisson));
+  chapter.check(
+      std::abs(bias - 0.0018) < 0.0001,
+      "1D lattice bias at eta = 1.2 is " + format("%.4f %%", 100 * bias) + ", expected +0.18 %");
+  chapter.check(worst_spread < 1e-10,
+                "a lattice density varies over the particles by " + format("%.1e", worst_spread));
   return scan;
 }
 
@@ -477,15 +537,21 @@ LatticeScan step4_lattice_bias(app::Chapter& chapter, const Setup& s) {
 void draw_lattice_figure(app::Chapter& chapter, const LatticeScan& scan) {
   plot::Figure figure(1, 2, {.width = 1700, .height = 700});
   figure.title("Density bias of a uniform lattice, \\rho_{SPH}/\\rho_0 - 1, against h / \\Delta x");
-  figure.stamp(plot::Stamp{.scheme = "gather density with self term, m = \\rho_0 \\Delta x^D", .kernel = "M4", .run_time = chapter.seconds()});
+  figure.stamp(plot::Stamp{.scheme = "gather density with self term, m = \\rho_0 \\Delta x^D",
+                           .kernel = "M4",
+                           .run_time = chapter.seconds()});
   const plot::Color colours[] = {plot::black, plot::red, plot::orange, plot::blue, plot::cyan};
-  const plot::Dash dashes[] = {plot::Dash::solid, plot::Dash::solid, plot::Dash::dashed, plot::Dash::solid, plot::Dash::dashed};
+  const plot::Dash dashes[] = {plot::Dash::solid, plot::Dash::solid, plot::Dash::dashed,
+                               plot::Dash::solid, plot::Dash::dashed};
   for (int panel = 0; panel < 2; ++panel) {
     for (std::size_t c = 0; c < scan.lattices.size(); ++c) {
       std::vector<double> percent;
       for (double b : scan.bias[c]) percent.push_back(panel == 0 ? 100 * b : 100 * std::abs(b));
       figure.panel(panel).line(scan.eta, percent,
-                               {.label = panel == 0 ? scan.lattices[c].name : "", .color = colours[c], .style = dashes[c], .width = 2.0});
+                               {.label = panel == 0 ? scan.lattices[c].name : "",
+                                .color = colours[c],
+                                .style = dashes[c],
+                                .width = 2.0});
     }
     figure.panel(panel).xlabel("\\eta = h / \\Delta x  (mean spacing \\Delta x)").xlim(0.9, 2.4);
   }
@@ -493,13 +559,23 @@ void draw_lattice_figure(app::Chapter& chapter, const LatticeScan& scan) {
   a.hline(0.0, {.color = plot::grey, .style = plot::Dash::dotted, .width = 1.0});
   a.vline(1.2, {.color = plot::grey, .style = plot::Dash::dotted, .width = 1.0});
   const std::vector<double> mark_x = {1.2}, mark_y = {100 * scan.bias_1d_at_1_2};
-  a.scatter(mark_x, mark_y, {.label = "1D, \\eta = 1.2: +" + format("%.2f %%", 100 * scan.bias_1d_at_1_2), .color = plot::black, .size = 10.0});
+  a.scatter(mark_x, mark_y,
+            {.label = "1D, \\eta = 1.2: +" + format("%.2f %%", 100 * scan.bias_1d_at_1_2),
+             .color = plot::black,
+             .size = 10.0});
   a.ylabel("\\rho_{SPH}/\\rho_0 - 1  [%]").ylim(-0.8, 0.8).legend(plot::Corner::upper_right);
   std::vector<double> bound;
   for (double eta : scan.eta) bound.push_back(100 * 2.2 / std::pow(std::numbers::pi * eta, 4));
   plot::Axes& b = figure.panel(1);
-  b.line(scan.eta, bound, {.label = "2.2/(\\pi\\eta)^4 (1D bound)", .color = plot::grey, .style = plot::Dash::dotted, .width = 2.0});
-  b.ylabel("|\\rho_{SPH}/\\rho_0 - 1|  [%]  (colours as in a)").yscale(plot::Scale::log).ylim(1e-4, 10).legend(plot::Corner::upper_right);
+  b.line(scan.eta, bound,
+         {.label = "2.2/(\\pi\\eta)^4 (1D bound)",
+          .color = plot::grey,
+          .style = plot::Dash::dotted,
+          .width = 2.0});
+  b.ylabel("|\\rho_{SPH}/\\rho_0 - 1|  [%]  (colours as in a)")
+      .yscale(plot::Scale::log)
+      .ylim(1e-4, 10)
+      .legend(plot::Corner::upper_right);
   figure.save_png(chapter.figure_path("lattice_bias.png"));
 }
 
@@ -533,27 +609,39 @@ void step5_calibration(app::Chapter& chapter, const Setup& s, const Settled& gla
   // The lattice: every particle alike, one sweep.
   const int side = s.quick ? 10 : 16;
   const std::array<int, 3> cells{side, side, side};
-  auto lattice = unit_box_particles<3>(sph::lattice<3>(sph::LatticeType::cubic, Vec<3>::Zero(), Vec<3>::Ones(), cells), s.neighbours);
+  auto lattice = unit_box_particles<3>(
+      sph::lattice<3>(sph::LatticeType::cubic, Vec<3>::Zero(), Vec<3>::Ones(), cells),
+      s.neighbours);
   sph::NeighbourSearch<3> search;
   search.update(lattice, unit_box<3>(), sph::SmoothingLengthRule::fixed());
-  const auto on_lattice = sph::calibrate_mass_to_density<3>(lattice, search.list(), 1.0, sph::DensityForm::watkins());
-  std::printf("  3D cubic lattice, %d^3, eta = %.3f: error %.2e before, %.2e after %d sweep(s); m N / M = %.6f\n", side,
-              lattice.smoothing_length[0] * side, on_lattice.initial_error, on_lattice.final_error, on_lattice.iterations,
-              lattice.mass[0] * side * side * side);
+  const auto on_lattice =
+      sph::calibrate_mass_to_density<3>(lattice, search.list(), 1.0, sph::DensityForm::watkins());
+  std::printf(
+      "  3D cubic lattice, %d^3, eta = %.3f: error %.2e before, %.2e after %d sweep(s); m N / M = "
+      "%.6f\n",
+      side, lattice.smoothing_length[0] * side, on_lattice.initial_error, on_lattice.final_error,
+      on_lattice.iterations, lattice.mass[0] * side * side * side);
   // The glass: per particle (30 sweeps), and the mean alone.
   auto per_particle = glass.particles, mean_only = glass.particles;
   search.update(per_particle, unit_box<3>(), sph::SmoothingLengthRule::fixed());
-  const auto on_glass = sph::calibrate_mass_to_density<3>(per_particle, search.list(), 1.0, sph::DensityForm::watkins(), 30);
-  std::printf("  settled glass, per particle:  error %.2e before, %.2e after %d sweeps; masses now scatter by %.2e\n",
-              on_glass.initial_error, on_glass.final_error, on_glass.iterations, sph::density_scatter(per_particle.mass).relative);
+  const auto on_glass = sph::calibrate_mass_to_density<3>(per_particle, search.list(), 1.0,
+                                                          sph::DensityForm::watkins(), 30);
+  std::printf(
+      "  settled glass, per particle:  error %.2e before, %.2e after %d sweeps; masses now scatter "
+      "by %.2e\n",
+      on_glass.initial_error, on_glass.final_error, on_glass.iterations,
+      sph::density_scatter(per_particle.mass).relative);
   const double factor = sph::calibrate_mean_density(mean_only, 1.0);
   const auto calibrated = sph::density_scatter(mean_only.density);
-  std::printf("  settled glass, mean only:     masses x %.6f; mean density %.6f, sigma %.2e (unchanged)\n\n", factor,
-              calibrated.mean, calibrated.relative);
+  std::printf(
+      "  settled glass, mean only:     masses x %.6f; mean density %.6f, sigma %.2e "
+      "(unchanged)\n\n",
+      factor, calibrated.mean, calibrated.relative);
   chapter.check(on_lattice.final_error < 1e-12 && on_lattice.iterations == 1,
                 "lattice calibration: error " + format("%.2e", on_lattice.final_error) + " after " +
                     std::to_string(on_lattice.iterations) + " sweeps");
-  chapter.check(std::abs(calibrated.mean - 1.0) < 1e-12, "glass mean calibration: mean density " + format("%.15f", calibrated.mean));
+  chapter.check(std::abs(calibrated.mean - 1.0) < 1e-12,
+                "glass mean calibration: mean density " + format("%.15f", calibrated.mean));
 }
 
 /// \section ch02_rules Step 6: the smoothing-length rules
@@ -589,7 +677,8 @@ struct RuleResult {
   double mean_count = 0, h_spread = 0, seconds = 0, worst_a6 = 0;
 };
 
-RuleResult apply_rule(sph::Particles<3> p, const std::string& name, const sph::SmoothingLengthRule& rule, double neighbours) {
+RuleResult apply_rule(sph::Particles<3> p, const std::string& name,
+                      const sph::SmoothingLengthRule& rule, double neighbours) {
   RuleResult r{name};
   const app::Stopwatch clock;
   sph::NeighbourSearch<3> search;
@@ -604,32 +693,43 @@ RuleResult apply_rule(sph::Particles<3> p, const std::string& name, const sph::S
   r.h_spread = *hhi / *hlo;
   // How well eq A6 holds with the density the pass computed (gather, self term, own h).
   for (std::size_t i = 0; i < p.size(); ++i) {
-    const double kernel_mass = p.density[i] * sph::unit_ball_volume<3>() * std::pow(2.0 * p.smoothing_length[i], 3);
+    const double kernel_mass =
+        p.density[i] * sph::unit_ball_volume<3>() * std::pow(2.0 * p.smoothing_length[i], 3);
     r.worst_a6 = std::max(r.worst_a6, std::abs(kernel_mass / (neighbours * p.mass[i]) - 1.0));
   }
   return r;
 }
 
-void step6_rules(app::Chapter& chapter, const Setup& s, const Settled& glass, const RandomSets& random) {
-  std::printf("Step 6: neighbour counts under the three smoothing-length rules (target %g)\n", s.neighbours);
-  std::printf("  %-22s %-30s %6s %8s %6s %9s %12s %9s\n", "set", "rule", "min", "mean", "max", "h max/min", "eq A6 error", "time [s]");
+void step6_rules(app::Chapter& chapter, const Setup& s, const Settled& glass,
+                 const RandomSets& random) {
+  std::printf("Step 6: neighbour counts under the three smoothing-length rules (target %g)\n",
+              s.neighbours);
+  std::printf("  %-22s %-30s %6s %8s %6s %9s %12s %9s\n", "set", "rule", "min", "mean", "max",
+              "h max/min", "eq A6 error", "time [s]");
   const double tolerance = std::round(0.1 * s.neighbours);
-  const std::pair<std::string, const sph::Particles<3>*> sets[] = {{"settled (gamma = 2)", &glass.particles}, {"random", &random.first}};
+  const std::pair<std::string, const sph::Particles<3>*> sets[] = {
+      {"settled (gamma = 2)", &glass.particles}, {"random", &random.first}};
   for (const auto& [set_name, set] : sets) {
     const RuleResult results[] = {
-        apply_rule(*set, "fixed h (eq A6 with rho = 1)", sph::SmoothingLengthRule::fixed(), s.neighbours),
+        apply_rule(*set, "fixed h (eq A6 with rho = 1)", sph::SmoothingLengthRule::fixed(),
+                   s.neighbours),
         apply_rule(*set, "neighbour number +-" + format("%.0f", tolerance),
-                   sph::SmoothingLengthRule::neighbour_number(s.neighbours, tolerance), s.neighbours),
-        apply_rule(*set, "density (eq A6 per particle)", sph::SmoothingLengthRule::from_density(s.neighbours), s.neighbours)};
+                   sph::SmoothingLengthRule::neighbour_number(s.neighbours, tolerance),
+                   s.neighbours),
+        apply_rule(*set, "density (eq A6 per particle)",
+                   sph::SmoothingLengthRule::from_density(s.neighbours), s.neighbours)};
     for (const RuleResult& r : results) {
-      std::printf("  %-22s %-30s %6d %8.2f %6d %9.3f %12.2e %9.4f\n", set_name.c_str(), r.name.c_str(), r.min_count, r.mean_count,
-                  r.max_count, r.h_spread, r.worst_a6, r.seconds);
+      std::printf("  %-22s %-30s %6d %8.2f %6d %9.3f %12.2e %9.4f\n", set_name.c_str(),
+                  r.name.c_str(), r.min_count, r.mean_count, r.max_count, r.h_spread, r.worst_a6,
+                  r.seconds);
     }
     const RuleResult& count = results[1];
-    chapter.check(std::abs(count.min_count - s.neighbours) <= tolerance && std::abs(count.max_count - s.neighbours) <= tolerance,
-                  set_name + ": neighbour-number rule gave counts " + std::to_string(count.min_count) + " to " +
-                      std::to_string(count.max_count));
-    chapter.check(results[2].worst_a6 < 1e-6, set_name + ": density rule violates eq A6 by " + format("%.2e", results[2].worst_a6));
+    chapter.check(std::abs(count.min_count - s.neighbours) <= tolerance &&
+                      std::abs(count.max_count - s.neighbours) <= tolerance,
+                  set_name + ": neighbour-number rule gave counts " +
+                      std::to_string(count.min_count) + " to " + std::to_string(count.max_count));
+    chapter.check(results[2].worst_a6 < 1e-6, set_name + ": density rule violates eq A6 by " +
+                                                  format("%.2e", results[2].worst_a6));
   }
   std::printf("\n");
 }
@@ -666,7 +766,8 @@ std::vector<std::pair<std::string, double>> density_errors(const sph::Particles<
 }
 
 struct CostStudy {
-  sph::ErrorVsTime study{"Density error of 3D lattices and settled glasses against the run time of the density step"};
+  sph::ErrorVsTime study{
+      "Density error of 3D lattices and settled glasses against the run time of the density step"};
   double relax_seconds = 0;
   long relaxed_particles = 0;
 };
@@ -675,30 +776,36 @@ struct CostStudy {
 /// best of three runs (the machine may be shared).
 void record(CostStudy& cost, const std::string& method, sph::Particles<3>& p) {
   double seconds = 1e300;
-  for (int k = 0; k < 3; ++k) seconds = std::min(seconds, measure_density(p, sph::DensityForm::watkins()));
+  for (int k = 0; k < 3; ++k)
+    seconds = std::min(seconds, measure_density(p, sph::DensityForm::watkins()));
   const int n = static_cast<int>(p.size());
   cost.study.add({method, n, std::cbrt(1.0 / n), seconds, density_errors(p)});
-  std::printf("  %s: N = %d, %.4f s, rms error %.3e, |mean error| %.3e\n", method.c_str(), n, seconds,
-              cost.study.records().back().error("rms error"), cost.study.records().back().error("|mean error|"));
+  std::printf("  %s: N = %d, %.4f s, rms error %.3e, |mean error| %.3e\n", method.c_str(), n,
+              seconds, cost.study.records().back().error("rms error"),
+              cost.study.records().back().error("|mean error|"));
 }
 
 /// The sweep runs on one thread, so that the times compare across N even on a shared machine
 /// (the smallest sets, below `sph::parallel_threshold`, run on one thread anyway).
 
-void run_cost_study(CostStudy& cost, const std::vector<int>& lattice_sides, const std::vector<int>& glass_sides) {
+void run_cost_study(CostStudy& cost, const std::vector<int>& lattice_sides,
+                    const std::vector<int>& glass_sides) {
   const int threads = omp_get_max_threads();
   omp_set_num_threads(1);
   for (double neighbours : {32.0, 64.0, 128.0}) {
     const std::string label = format("%.0f", neighbours) + " neighbours";
     for (int side : lattice_sides) {
       const std::array<int, 3> cells{side, side, side};
-      auto p = unit_box_particles<3>(sph::lattice<3>(sph::LatticeType::cubic, Vec<3>::Zero(), Vec<3>::Ones(), cells), neighbours);
+      auto p = unit_box_particles<3>(
+          sph::lattice<3>(sph::LatticeType::cubic, Vec<3>::Zero(), Vec<3>::Ones(), cells),
+          neighbours);
       record(cost, "lattice, " + label, p);
     }
     for (int side : glass_sides) {
       // The glass is built first, outside the timed density step.
       const std::size_t n = static_cast<std::size_t>(side) * side * side;
-      auto p = unit_box_particles<3>(sph::uniform_random<3>(Vec<3>::Zero(), Vec<3>::Ones(), n, 1000 + side), neighbours);
+      auto p = unit_box_particles<3>(
+          sph::uniform_random<3>(Vec<3>::Zero(), Vec<3>::Ones(), n, 1000 + side), neighbours);
       const app::Stopwatch relax_clock;
       sph::relax_to_uniform_density(p, unit_box<3>());
       cost.relax_seconds += relax_clock.seconds();
@@ -717,26 +824,33 @@ void run_cost_study(CostStudy& cost, const std::vector<int>& lattice_sides, cons
 void step7_cost(app::Chapter& chapter, const Setup& s) {
   std::printf("Step 7: density error against run time (3D, periodic unit box)\n");
   CostStudy cost;
-  const std::vector<int> lattice_sides = s.quick ? std::vector<int>{6, 8, 10} : std::vector<int>{8, 12, 16, 24, 32};
-  const std::vector<int> glass_sides = s.quick ? std::vector<int>{6, 8} : std::vector<int>{8, 12, 16};
+  const std::vector<int> lattice_sides =
+      s.quick ? std::vector<int>{6, 8, 10} : std::vector<int>{8, 12, 16, 24, 32};
+  const std::vector<int> glass_sides =
+      s.quick ? std::vector<int>{6, 8} : std::vector<int>{8, 12, 16};
   run_cost_study(cost, lattice_sides, glass_sides);
   std::printf("\n%s", cost.study.table().c_str());
-  std::printf("relaxing the glasses took %.1f s for %ld particles in all (not in the times above)\n", cost.relax_seconds,
-              cost.relaxed_particles);
+  std::printf(
+      "relaxing the glasses took %.1f s for %ld particles in all (not in the times above)\n",
+      cost.relax_seconds, cost.relaxed_particles);
   for (const std::string& method : cost.study.methods()) {
     const sph::ErrorCurve curve = cost.study.curve(method, "rms error");
     const auto [lo, hi] = std::minmax_element(curve.error.begin(), curve.error.end());
     if (method.starts_with("lattice")) {
-      chapter.check(*hi <= *lo * (1 + 1e-9),
-                    method + ": the lattice error changes with N (" + format("%.3e", *lo) + " to " + format("%.3e", *hi) + ")");
+      chapter.check(*hi <= *lo * (1 + 1e-9), method + ": the lattice error changes with N (" +
+                                                 format("%.3e", *lo) + " to " +
+                                                 format("%.3e", *hi) + ")");
     } else {
       chapter.check(*hi < 0.02, method + ": glass rms error " + format("%.3e", *hi) + " above 2 %");
     }
   }
   app::ErrorFigureOptions options;
   options.stamp = plot::format_stamp(
-      {.scheme = "gather density with self term, constant h (eq A6), search + density on one thread", .kernel = "M4"});
-  options.title = "Density error of 3D lattices and settled glasses against the time of the density step";
+      {.scheme =
+           "gather density with self term, constant h (eq A6), search + density on one thread",
+       .kernel = "M4"});
+  options.title =
+      "Density error of 3D lattices and settled glasses against the time of the density step";
   plot::Figure figure = app::error_figure(cost.study, options);
   figure.panel(0).ylim(1e-4, 1e-2).legend(plot::Corner::lower_right);
   figure.panel(1).ylim(1e-5, 1e-2).legend(plot::Corner::lower_right);
@@ -755,11 +869,18 @@ void step7_cost(app::Chapter& chapter, const Setup& s) {
 
 int main(int argc, char** argv) {
   return app::run_main([&] {
-    app::Chapter chapter("02-density", "Chapter 2: Neighbours, density and the smoothing length", argc, argv);
+    app::Chapter chapter("02-density", "Chapter 2: Neighbours, density and the smoothing length",
+                         argc, argv);
     Setup s;
-    chapter.parameter("--particles", s.particles, "particles of the static tests (Watkins: 5000)").check(app::at_least(200));
-    chapter.parameter("--neighbours", s.neighbours, "expected neighbours within 2h, eq A5 (Watkins: 60)").check(app::between(8, 400));
-    chapter.parameter("--draws", s.draws, "random sets drawn to measure the spread of mean and sigma").check(app::at_least(2));
+    chapter.parameter("--particles", s.particles, "particles of the static tests (Watkins: 5000)")
+        .check(app::at_least(200));
+    chapter
+        .parameter("--neighbours", s.neighbours,
+                   "expected neighbours within 2h, eq A5 (Watkins: 60)")
+        .check(app::between(8, 400));
+    chapter
+        .parameter("--draws", s.draws, "random sets drawn to measure the spread of mean and sigma")
+        .check(app::at_least(2));
     if (int rc = chapter.parse(); rc >= 0) return rc;
     s.quick = chapter.quick();
     if (s.quick) {

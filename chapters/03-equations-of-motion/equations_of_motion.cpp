@@ -294,8 +294,8 @@ struct StreamsScene {
   sph::CollidingStreamsSetup setup;
   double neighbours = 5;  // the neighbour-number rule of the runs without pile-up
   double t_end = 0.4;
-  int outputs = 200;      // points along each path
-  int paths = 24;         // paths drawn per stream
+  int outputs = 200;  // points along each path
+  int paths = 24;     // paths drawn per stream
 };
 
 /// Every number a reader may want to change is a command-line option, declared below with
@@ -322,21 +322,22 @@ struct StreamsScene {
 struct Parameters {
   SodScene sod;
   StreamsScene streams;
-  int cells = 800;            // Sod: lattice cells per unit length on the left (dx = 1/cells)
-  int stream_cells = 200;     // streams: particles per unit length
-  int levels = 6;             // Step 7: resolutions dx = 1/100, 1/200, ...
+  int cells = 800;             // Sod: lattice cells per unit length on the left (dx = 1/cells)
+  int stream_cells = 200;      // streams: particles per unit length
+  int levels = 6;              // Step 7: resolutions dx = 1/100, 1/200, ...
   double alpha = 1, beta = 2;  // the viscosity of the contrast runs
-  long pileup_steps = 20000;  // streams: the step budget of the run with h from the density
+  long pileup_steps = 20000;   // streams: the step budget of the run with h from the density
 
   sph::MonaghanGingold1983 viscosity() const { return {alpha, beta}; }
 };
 
 void declare_parameters(app::Chapter& chapter, Parameters& par) {
-  chapter.parameter("--cells", par.cells,
-                    "shock tube: lattice cells per unit length on the left (dx = 1/cells)")
+  chapter
+      .parameter("--cells", par.cells,
+                 "shock tube: lattice cells per unit length on the left (dx = 1/cells)")
       .check(app::at_least(300));  // coarser, the post-shock window holds no particle
-  chapter.parameter("--neighbours", par.sod.neighbours,
-                    "shock tube: N in h = N m/(4 rho) (4: h = dx)")
+  chapter
+      .parameter("--neighbours", par.sod.neighbours, "shock tube: N in h = N m/(4 rho) (4: h = dx)")
       .check(app::between(2.5, 12));
   chapter.parameter("--courant", par.sod.courant, "Courant factor epsilon of eq 7")
       .check(app::between(0.01, 0.9));
@@ -346,17 +347,20 @@ void declare_parameters(app::Chapter& chapter, Parameters& par) {
       .check(app::non_negative());
   chapter.parameter("--mach", par.streams.setup.mach, "colliding streams: Mach number")
       .check(app::at_least(1.0));
-  chapter.parameter("--stream-cells", par.stream_cells,
-                    "colliding streams: particles per unit length")
+  chapter
+      .parameter("--stream-cells", par.stream_cells, "colliding streams: particles per unit length")
       .check(app::at_least(20));
-  chapter.parameter("--stream-neighbours", par.streams.neighbours,
-                    "colliding streams: neighbour number")
+  chapter
+      .parameter("--stream-neighbours", par.streams.neighbours,
+                 "colliding streams: neighbour number")
       .check(app::between(3, 12));
-  chapter.parameter("--pileup-steps", par.pileup_steps,
-                    "colliding streams: step budget of the h-from-density run")
+  chapter
+      .parameter("--pileup-steps", par.pileup_steps,
+                 "colliding streams: step budget of the h-from-density run")
       .check(app::at_least(100));
-  chapter.parameter("--levels", par.levels,
-                    "error sweep: resolutions dx = 1/100, 1/200, ... (7: a few minutes)")
+  chapter
+      .parameter("--levels", par.levels,
+                 "error sweep: resolutions dx = 1/100, 1/200, ... (7: a few minutes)")
       .check(app::between(2, 8));
 }
 
@@ -422,11 +426,9 @@ template <class Scheme>
 app::TubeRun<dim> run_sod(const std::string& name, const SodScene& scene,
                           const typename Scheme::Terms& terms,
                           app::RunReport report = app::RunReport::live_and_final) {
-  return app::run_shock_tube<Scheme>(scene.tube, scene.smoothing(), terms,
-                                     {.t_end = scene.t_end,
-                                      .courant = scene.courant,
-                                      .label = name,
-                                      .report = report});
+  return app::run_shock_tube<Scheme>(
+      scene.tube, scene.smoothing(), terms,
+      {.t_end = scene.t_end, .courant = scene.courant, .label = name, .report = report});
 }
 
 SodRuns step1_sod_runs(const app::Chapter& chapter, const Parameters& par) {
@@ -541,8 +543,10 @@ ErrorTable step2_errors(const SodRuns& runs, const Parameters& par) {
                      sod_errors(runs.viscous.particles, sod_gas, t),
                      sod_errors(runs.printed.particles, sod_gas, t),
                      sod_errors(runs.printed.particles, printed_gas, t)};
-  std::printf("\nStep 2: L1 errors in -0.5 <= x <= 0.5 (N = %d particles) against Sod's exact "
-              "solution\n", runs.inviscid.in_window);
+  std::printf(
+      "\nStep 2: L1 errors in -0.5 <= x <= 0.5 (N = %d particles) against Sod's exact "
+      "solution\n",
+      runs.inviscid.in_window);
   std::printf("  %-22s %6s  %8s  %-9s  %-9s  %-9s  %-7s  %-8s\n", "run", "steps", "wall [s]",
               "L1(rho)", "L1(v)", "L1(P)", "|dE|/E", "|sum mv|");
   const std::pair<const app::TubeRun<dim>*, const SodErrors*> rows[] = {
@@ -630,8 +634,9 @@ StarRegion star_region(const app::TubeRun<D>& run, const SodScene& scene) {
     sum_u += run.particles.internal_energy[i];
     ++star.count;
   }
-  sph::require(star.count > 0, "star region: no particles between contact and shock "
-                               "(the resolution is too coarse)");
+  sph::require(star.count > 0,
+               "star region: no particles between contact and shock "
+               "(the resolution is too coarse)");
   std::nth_element(pressures.begin(), pressures.begin() + pressures.size() / 2, pressures.end());
   star.p_star = pressures[pressures.size() / 2];
   star.ringing = std::sqrt(sum_square / star.count);
@@ -675,8 +680,10 @@ StarTable step3_star_region(const SodRuns& runs, const Parameters& par) {
   std::printf("\nStep 3: the star region, exact p* = %.5f, u* = %.5f\n", exact.star_pressure(),
               exact.star_velocity());
   std::printf("  post-shock window %.3f < x < %.3f\n", star.inviscid.lower, star.inviscid.upper);
-  std::printf("  post-shock u: %.4f behind a shock (Rankine-Hugoniot), %.4f after adiabatic "
-              "compression\n", star.u_shock, star.u_adiabat);
+  std::printf(
+      "  post-shock u: %.4f behind a shock (Rankine-Hugoniot), %.4f after adiabatic "
+      "compression\n",
+      star.u_shock, star.u_adiabat);
   const std::pair<const app::TubeRun<dim>*, const StarRegion*> rows[] = {
       {&runs.inviscid, &star.inviscid}, {&runs.viscous, &star.viscous}};
   for (const auto& [run, s] : rows) {
@@ -780,8 +787,8 @@ Fronts fronts_of_exact(const Reference& reference, const sph::RiemannSolution& s
 /// the analysis above says which.
 
 struct FrontTable {
-  Fronts sod_gas, printed_gas;          // the two exact solutions
-  Fronts inviscid, viscous, printed;    // the runs
+  Fronts sod_gas, printed_gas;        // the two exact solutions
+  Fronts inviscid, viscous, printed;  // the runs
 };
 
 FrontTable step4_wave_fronts(const SodRuns& runs, const Parameters& par) {
@@ -791,9 +798,10 @@ FrontTable step4_wave_fronts(const SodRuns& runs, const Parameters& par) {
                      fronts_of_exact(printed_equivalent(sod.tube), exact, sod.t_end),
                      fronts_of_run(runs.inviscid), fronts_of_run(runs.viscous),
                      fronts_of_run(runs.printed)};
-  std::printf("\nStep 4: wave fronts at t = %.1f: rarefaction head (v = 0.05) and shock "
-              "(P = %.4f)\n",
-              sod.t_end, 0.5 * (sod.tube.right.pressure + exact.star_pressure()));
+  std::printf(
+      "\nStep 4: wave fronts at t = %.1f: rarefaction head (v = 0.05) and shock "
+      "(P = %.4f)\n",
+      sod.t_end, 0.5 * (sod.tube.right.pressure + exact.star_pressure()));
   const std::pair<const char*, const Fronts*> rows[] = {
       {"exact, Sod's gas (gamma = 1.4)", &f.sod_gas},
       {"exact, equivalent gas of eq 4 as printed", &f.printed_gas},
@@ -848,10 +856,8 @@ void add_reference_lines(plot::Figure& figure, const Reference& reference, doubl
   }
   const std::vector<double>* values[] = {&rho, &v, &P, &u};
   for (int k = 0; k < 4; ++k) {
-    figure.panel(k).line(x, *values[k], {.label = label,
-                                         .color = color,
-                                         .style = plot::Dash::dashed,
-                                         .width = 1.6});
+    figure.panel(k).line(
+        x, *values[k], {.label = label, .color = color, .style = plot::Dash::dashed, .width = 1.6});
   }
 }
 
@@ -870,8 +876,9 @@ void add_reference_lines(plot::Figure& figure, const Reference& reference, doubl
 
 void step5_figures(const app::Chapter& chapter, const SodRuns& runs, const StarTable& star,
                    const Parameters& par) {
-  std::printf("\nStep 5: the figures sod_no_viscosity.png, sod_monaghan_gingold.png and "
-              "sod_as_printed.png\n");
+  std::printf(
+      "\nStep 5: the figures sod_no_viscosity.png, sod_monaghan_gingold.png and "
+      "sod_as_printed.png\n");
   const SodScene& sod = par.sod;
   plot::Figure figure =
       sod_figure(runs.inviscid, sod, "Sod's shock tube without viscosity (Hernquist & Katz form)",
@@ -992,8 +999,8 @@ void draw_paths(plot::Axes& axes, const app::StreamsRun<D>& run, double t_end) {
 /// that stopped early gets a dotted line at the time it reached), and in (d) the final
 /// density of the two runs that finished, against the exact solution.
 template <int D>
-void streams_figure(const std::vector<const app::StreamsRun<D>*>& runs,
-                    const StreamsScene& scene, const std::string& path) {
+void streams_figure(const std::vector<const app::StreamsRun<D>*>& runs, const StreamsScene& scene,
+                    const std::string& path) {
   plot::Figure figure(2, 2, {.width = 1500, .height = 1200});
   figure.title(format("Two cold streams colliding at Mach %g (\\gamma = 5/3)", scene.setup.mach));
   double seconds = 0;
@@ -1019,9 +1026,9 @@ void streams_figure(const std::vector<const app::StreamsRun<D>*>& runs,
   for (const auto* run : {runs[0], runs[2]}) {
     std::vector<double> x;
     for (const auto& r : run->particles.position) x.push_back(r[0]);
-    density.scatter(x, run->particles.density,
-                    {.label = run->name, .color = run == runs[0] ? plot::black : plot::blue,
-                     .size = 3.5});
+    density.scatter(
+        x, run->particles.density,
+        {.label = run->name, .color = run == runs[0] ? plot::black : plot::blue, .size = 3.5});
   }
   density.line(xs, rho, {.label = "exact", .color = plot::red, .width = 1.6});
   density.xlim(-0.6, 0.6).ylim(0, 5.5).xlabel("x  [code units]").ylabel("\\rho  [code units]");
@@ -1077,20 +1084,21 @@ StreamRuns<dim> step6_colliding_streams(const app::Chapter& chapter, const Param
           format("Monaghan-Gingold AV, %g neighbours", scene.neighbours), scene,
           {{}, par.viscosity()}, neighbour_rule, unlimited)};
   s.dx = scene.setup.length / s.passing.left_count;
-  std::printf("  %d particles per stream, %zu pairs; deepest: how far a particle has passed one\n"
-              "  that started ahead of it, in initial spacings\n",
-              par.stream_cells, s.passing.inversions.pairs());
+  std::printf(
+      "  %d particles per stream, %zu pairs; deepest: how far a particle has passed one\n"
+      "  that started ahead of it, in initial spacings\n",
+      par.stream_cells, s.passing.inversions.pairs());
   std::printf("  %-33s %6s %8s %7s %9s %9s %8s %8s\n", "run", "steps", "wall [s]", "t", "rho_max",
               "inverted", "adjacent", "deepest");
   for (const auto* run : {&s.passing, &s.pileup, &s.stopped}) {
-    const double rho_max = *std::max_element(run->particles.density.begin(),
-                                             run->particles.density.end());
+    const double rho_max =
+        *std::max_element(run->particles.density.begin(), run->particles.density.end());
     std::printf("  %-33s %6ld %8.2f %7.4f %9.3g %9zu %8zu %8.1f\n", run->name.c_str(), run->steps,
                 run->seconds, run->t_reached, rho_max, run->inversions.all,
                 run->inversions.adjacent, run->inversions.deepest / s.dx);
     if (!run->stopped.empty()) {
-      const std::string why = format("  %33s stopped: %s; last step %.2e", "",
-                                     run->stopped.c_str(), run->last_dt);
+      const std::string why =
+          format("  %33s stopped: %s; last step %.2e", "", run->stopped.c_str(), run->last_dt);
       std::printf("%s\n", app::wrap(why, 100, 38).c_str());
     }
   }
@@ -1137,7 +1145,10 @@ void sweep_sod(sph::ErrorVsTime& study, const std::string& method, SodScene scen
     scene.tube.left_spacing = 1.0 / n;
     const auto run = run_sod<Scheme>(method, scene, terms, app::RunReport::live);
     const SodErrors e = sod_errors(run.particles, Reference{run.exact, 1.0}, scene.t_end);
-    study.add({method, run.in_window, scene.tube.left_spacing, run.seconds,
+    study.add({method,
+               run.in_window,
+               scene.tube.left_spacing,
+               run.seconds,
                {{"L1(rho)", e.density}, {"L1(v)", e.velocity}, {"L1(P)", e.pressure}}});
     std::printf("  %-20s dx = 1/%-5d N = %4d  %5ld steps  %6.2f s  L1(rho) = %.3e\n",
                 method.c_str(), n, run.in_window, run.steps, run.seconds, e.density);
@@ -1150,25 +1161,27 @@ void sweep_sod(sph::ErrorVsTime& study, const std::string& method, SodScene scen
 void save_error_figure(const sph::ErrorVsTime& study, const SodScene& scene, int finest,
                        const std::string& path) {
   app::ErrorFigureOptions options;
-  options.title = "Sod's shock tube, t = 0.2: L_1 error against run time, no viscosity and AV "
-                  "(\\alpha = 1, \\beta = 2)";
+  options.title =
+      "Sod's shock tube, t = 0.2: L_1 error against run time, no viscosity and AV "
+      "(\\alpha = 1, \\beta = 2)";
   options.quantities = {"L1(rho)", "L1(v)"};
   options.width = 1700;
   options.height = 720;
-  options.stamp = plot::format_stamp(
-      {.scheme = "SPH, Hernquist-Katz, without and with Monaghan-Gingold AV",
-       .kernel = "M4",
-       .neighbours = scene.neighbours,
-       .extra = format("dx = 1/100 ... 1/%d", finest)});
+  options.stamp =
+      plot::format_stamp({.scheme = "SPH, Hernquist-Katz, without and with Monaghan-Gingold AV",
+                          .kernel = "M4",
+                          .neighbours = scene.neighbours,
+                          .extra = format("dx = 1/100 ... 1/%d", finest)});
   plot::Figure figure = app::error_figure(study, options);
   for (int k = 0; k < 2; ++k) {
     const sph::ErrorCurve c = study.curve("Monaghan-Gingold AV", options.quantities[k]);
     const std::vector<double> t = {c.seconds.front(), c.seconds.back()};
     const std::vector<double> e = {c.error.back() * std::sqrt(t[1] / t[0]), c.error.back()};
-    figure.panel(k).line(t, e, {.label = "\\propto t^{-1/2}",
-                                .color = plot::grey,
-                                .style = plot::Dash::dotted,
-                                .width = 1.3});
+    figure.panel(k).line(t, e,
+                         {.label = "\\propto t^{-1/2}",
+                          .color = plot::grey,
+                          .style = plot::Dash::dotted,
+                          .width = 1.3});
     figure.panel(k).legend(plot::Corner::lower_left);
   }
   figure.save_png(path);
@@ -1194,8 +1207,9 @@ void save_error_figure(const sph::ErrorVsTime& study, const SodScene& scene, int
 sph::ErrorVsTime step7_error_against_run_time(const app::Chapter& chapter, const Parameters& par) {
   std::printf("\nStep 7: error against run time, Sod's tube at t = %.1f\n", par.sod.t_end);
   const std::vector<int> cells = sph::geometric_series(100, 2, par.levels);
-  sph::ErrorVsTime study("Sod's shock tube at t = 0.2: L1 errors in -0.5 <= x <= 0.5, "
-                         "N = particles there");
+  sph::ErrorVsTime study(
+      "Sod's shock tube at t = 0.2: L1 errors in -0.5 <= x <= 0.5, "
+      "N = particles there");
   sweep_sod<HernquistKatz<dim>>(study, "no viscosity", par.sod, {}, cells);
   sweep_sod<WithViscosity<dim>>(study, "Monaghan-Gingold AV", par.sod, {{}, par.viscosity()},
                                 cells);
@@ -1274,22 +1288,24 @@ void check_claims(app::Chapter& chapter, const Findings& f) {
   const Fronts &sod = f.fronts.sod_gas, &inviscid = f.fronts.inviscid, &printed = f.fronts.printed;
   const StarRegion &star = f.star.inviscid, &viscous = f.star.viscous;
   const sph::RiemannSolution& exact = f.sod.inviscid.exact;
-  chapter.check(std::abs(inviscid.head - sod.head) < 0.005 &&
-                    std::abs(inviscid.shock - sod.shock) < 0.02,
-                format("inviscid waves: head %.4f, shock %.4f; Sod's %.4f, %.4f", inviscid.head,
-                       inviscid.shock, sod.head, sod.shock));
+  chapter.check(
+      std::abs(inviscid.head - sod.head) < 0.005 && std::abs(inviscid.shock - sod.shock) < 0.02,
+      format("inviscid waves: head %.4f, shock %.4f; Sod's %.4f, %.4f", inviscid.head,
+             inviscid.shock, sod.head, sod.shock));
   chapter.check(std::abs(star.internal_energy - f.star.u_adiabat) <
                     std::abs(star.internal_energy - f.star.u_shock),
                 format("inviscid post-shock u = %.4f is not nearer the adiabat %.4f than the "
-                       "shock's %.4f", star.internal_energy, f.star.u_adiabat, f.star.u_shock));
+                       "shock's %.4f",
+                       star.internal_energy, f.star.u_adiabat, f.star.u_shock));
   chapter.check(star.ringing > 0.1 * exact.star_velocity() && star.ringing > 10 * viscous.ringing,
                 format("inviscid ringing %.4f should exceed 10 %% of u* and 10x the viscous %.4f",
                        star.ringing, viscous.ringing));
-  chapter.check(std::abs(viscous.p_star / exact.star_pressure() - 1) < 0.01 &&
-                    std::abs(viscous.internal_energy / f.star.u_shock - 1) < 0.01,
-                format("viscous p* = %.4f and post-shock u = %.4f should be within 1 %% of %.5f "
-                       "and %.4f", viscous.p_star, viscous.internal_energy, exact.star_pressure(),
-                       f.star.u_shock));
+  chapter.check(
+      std::abs(viscous.p_star / exact.star_pressure() - 1) < 0.01 &&
+          std::abs(viscous.internal_energy / f.star.u_shock - 1) < 0.01,
+      format("viscous p* = %.4f and post-shock u = %.4f should be within 1 %% of %.5f "
+             "and %.4f",
+             viscous.p_star, viscous.internal_energy, exact.star_pressure(), f.star.u_shock));
   chapter.check(f.errors.viscous.density < 0.25 * f.errors.inviscid.density,
                 format("viscous L1(rho) = %.3e is not 4x below the inviscid %.3e",
                        f.errors.viscous.density, f.errors.inviscid.density));
@@ -1299,16 +1315,15 @@ void check_claims(app::Chapter& chapter, const Findings& f) {
                        printed.shock));
   chapter.check(std::abs(printed.head - f.fronts.printed_gas.head) < 0.01 &&
                     std::abs(printed.shock - f.fronts.printed_gas.shock) < 0.02,
-                format("eq 4 as printed: head %.4f, shock %.4f; predicted %.4f, %.4f",
-                       printed.head, printed.shock, f.fronts.printed_gas.head,
-                       f.fronts.printed_gas.shock));
+                format("eq 4 as printed: head %.4f, shock %.4f; predicted %.4f, %.4f", printed.head,
+                       printed.shock, f.fronts.printed_gas.head, f.fronts.printed_gas.shock));
   chapter.check(f.errors.printed_own.density < 0.5 * f.errors.printed.density,
                 format("eq 4 as printed: L1(rho) %.3e against the prediction, %.3e against Sod",
                        f.errors.printed_own.density, f.errors.printed.density));
   const StreamRuns<dim>& s = f.streams;
-  chapter.check(s.passing.inversions.all > 0 && s.passing.inversions.deepest > 10 * s.dx,
-                "inviscid streams should pass through each other: " +
-                    s.passing.inversions.summary());
+  chapter.check(
+      s.passing.inversions.all > 0 && s.passing.inversions.deepest > 10 * s.dx,
+      "inviscid streams should pass through each other: " + s.passing.inversions.summary());
   chapter.check(s.pileup.inversions.all == 0,
                 "streams with h from density should not pass: " + s.pileup.inversions.summary());
   chapter.check(s.stopped.inversions.all * 100 <= s.passing.inversions.all,
@@ -1317,12 +1332,14 @@ void check_claims(app::Chapter& chapter, const Findings& f) {
   const double order_inviscid = f.study.order("no viscosity", "L1(rho)");
   const double order_viscous = f.study.order("Monaghan-Gingold AV", "L1(rho)");
   chapter.check(order_inviscid < 0.3, format("inviscid L1(rho) converges at order %.2f "
-                                             "(expected < 0.3)", order_inviscid));
+                                             "(expected < 0.3)",
+                                             order_inviscid));
   chapter.check(order_viscous > 0.7,
                 format("viscous L1(rho) converges at order %.2f (expected > 0.7)", order_viscous));
 
   chapter.summary("error", format("L1(rho) = %.4f (no AV), %.5f (AV), %.4f (eq 4 as printed), "
-                                  "N = %d", f.errors.inviscid.density, f.errors.viscous.density,
+                                  "N = %d",
+                                  f.errors.inviscid.density, f.errors.viscous.density,
                                   f.errors.printed.density, f.sod.inviscid.in_window));
   chapter.summary("ringing", format("%.4f (no AV), %.4f (AV)", star.ringing, viscous.ringing));
   chapter.summary("inversions", format("%zu (no AV), %zu (AV)", s.passing.inversions.all,

@@ -305,9 +305,9 @@ void print_headline(const Parameters& par) {
 
 struct Sod1D {
   struct Row {
-    int resolution = 0;   // particles per unit length on the dense side
-    double target = 0;    // the L1(rho) we ask for at full resolution
-    int in_window = 0;    // particles in |x| <= 0.5 at the end
+    int resolution = 0;  // particles per unit length on the dense side
+    double target = 0;   // the L1(rho) we ask for at full resolution
+    int in_window = 0;   // particles in |x| <= 0.5 at the end
     double l1_rho = 0;
     double momentum_drift = 0;
   };
@@ -320,8 +320,9 @@ Sod1D step1_sod_1d(const app::Chapter& chapter, const Parameters& par) {
   const sph::MonaghanGingold1983 viscosity = par.viscosity();
   std::printf("\nStep 1: Sod's tube in 1D, t = %g, h from density with N = %g\n", par.t_end,
               par.neighbours_1d);
-  std::printf("  N(window) N(tube) steps wall [s]  L1(rho)    L1(v)      L1(P)      target    "
-              "other code\n");
+  std::printf(
+      "  N(window) N(tube) steps wall [s]  L1(rho)    L1(v)      L1(P)      target    "
+      "other code\n");
   Sod1D result;
   // (resolution, target): 800 per unit length puts 450 particles in the window, 3200 puts 1800.
   const std::pair<int, double> resolutions[] = {{par.sod_1d / 4, 0.003}, {par.sod_1d, 0.001}};
@@ -344,14 +345,17 @@ Sod1D step1_sod_1d(const app::Chapter& chapter, const Parameters& par) {
     if (resolution != par.sod_1d) continue;
     std::printf("  momentum drift |dP|/sum|mv| = %.1e; last step limited by: %s\n",
                 run.momentum_drift, run.limit.c_str());
-    const plot::Stamp stamp{par.viscosity().describe(), "M4", par.neighbours_1d,
-                            static_cast<long long>(run.particles.size()), run.seconds,
+    const plot::Stamp stamp{par.viscosity().describe(),
+                            "M4",
+                            par.neighbours_1d,
+                            static_cast<long long>(run.particles.size()),
+                            run.seconds,
                             "h = \\Delta x"};
     app::shock_tube_figure({app::make_profile(run.particles, "SPH")}, run.exact, par.t_end,
                            "Sod shock tube in 1D, t = " + format("%g", par.t_end), stamp)
         .save_png(chapter.figure_path("sod_1d.png").string());
-    sph::write_snapshot(chapter.figure_path("sod_1d_t0.2.dat").string(), run.particles,
-                        par.t_end, sod.gamma);
+    sph::write_snapshot(chapter.figure_path("sod_1d_t0.2.dat").string(), run.particles, par.t_end,
+                        sod.gamma);
   }
   return result;
 }
@@ -460,20 +464,27 @@ EtaScan step2_lattice_sums(const app::Chapter& chapter, const Parameters& par) {
       .xlabel("h/\\Delta x")
       .ylabel("|lattice sum - 1|")
       .yscale(plot::Scale::log)
-      .line(scan.eta, gradient_error, {.label = "gradient sum S", .color = plot::blue,
-                                       .marker = plot::Marker::circle, .marker_size = 7})
-      .line(scan.eta, density_error, {.label = "density sum", .color = plot::orange,
-                                      .style = plot::Dash::dashed,
-                                      .marker = plot::Marker::square, .marker_size = 7})
+      .line(scan.eta, gradient_error,
+            {.label = "gradient sum S",
+             .color = plot::blue,
+             .marker = plot::Marker::circle,
+             .marker_size = 7})
+      .line(scan.eta, density_error,
+            {.label = "density sum",
+             .color = plot::orange,
+             .style = plot::Dash::dashed,
+             .marker = plot::Marker::square,
+             .marker_size = 7})
       .legend(plot::Corner::lower_right);
   fig.panel(1)
       .xlabel("h/\\Delta x")
       .ylabel("L_1(\\rho)")
       .yscale(plot::Scale::log)
-      .line(scan.eta, scan.l1_rho, {.label = "Sod 1D, \\alpha = 1, \\beta = 2",
-                                    .color = plot::black,
-                                    .marker = plot::Marker::circle,
-                                    .marker_size = 7})
+      .line(scan.eta, scan.l1_rho,
+            {.label = "Sod 1D, \\alpha = 1, \\beta = 2",
+             .color = plot::black,
+             .marker = plot::Marker::circle,
+             .marker_size = 7})
       .legend(plot::Corner::lower_right);
   fig.save_png(chapter.figure_path("lattice_sums_1d.png").string());
   return scan;
@@ -592,8 +603,9 @@ void print_multi_d_row(const char* start, const app::TubeRun<D>& run, double nei
 
 MultiD step3_sod_2d_3d(const app::Chapter& chapter, const Parameters& par) {
   std::printf("\nStep 3: Sod's tube in 2D and 3D\n");
-  std::printf("  a cubic lattice stretched along x (3D, 60 neighbours): the x-gradient sum\n"
-              "  stretch:");
+  std::printf(
+      "  a cubic lattice stretched along x (3D, 60 neighbours): the x-gradient sum\n"
+      "  stretch:");
   for (double stretch : {1.0, 1.5, 2.0, 2.3, 3.0}) std::printf("  %4.1f", stretch);
   std::printf("\n  sum:    ");
   for (double stretch : {1.0, 1.5, 2.0, 2.3, 3.0}) {
@@ -615,8 +627,9 @@ MultiD step3_sod_2d_3d(const app::Chapter& chapter, const Parameters& par) {
   const app::TubeRun<3> sod3 = run_tube<3>(multi, rule_3d, viscosity, par.t_end, "Sod 3D");
 
   std::printf("\n  Sod 2D and 3D, t = %g\n", par.t_end);
-  std::printf("  dim  start    N(tube)  ngb  steps  wall [s]  us/particle-step  L1(rho)    L1(v)"
-              "      L1(P)\n");
+  std::printf(
+      "  dim  start    N(tube)  ngb  steps  wall [s]  us/particle-step  L1(rho)    L1(v)"
+      "      L1(P)\n");
   print_multi_d_row("glass", sod2, par.neighbours_2d, par.t_end);
   print_multi_d_row("glass", sod3, par.neighbours_3d, par.t_end);
   print_multi_d_row("lattice", lattice3, par.neighbours_3d, par.t_end);
@@ -626,28 +639,28 @@ MultiD step3_sod_2d_3d(const app::Chapter& chapter, const Parameters& par) {
   result.p_star = sod3.exact.star_pressure();
   result.p_lattice = plateau_pressure(lattice3, par.t_end);
   result.p_glass = plateau_pressure(sod3, par.t_end);
-  std::printf("  plateau pressure behind the rarefaction: exact %.4f,\n"
-              "    lattice start %.4f (%+.1f %%), glass start %.4f (%+.1f %%)\n",
-              result.p_star, result.p_lattice, 100 * (result.p_lattice / result.p_star - 1),
-              result.p_glass, 100 * (result.p_glass / result.p_star - 1));
+  std::printf(
+      "  plateau pressure behind the rarefaction: exact %.4f,\n"
+      "    lattice start %.4f (%+.1f %%), glass start %.4f (%+.1f %%)\n",
+      result.p_star, result.p_lattice, 100 * (result.p_lattice / result.p_star - 1), result.p_glass,
+      100 * (result.p_glass / result.p_star - 1));
 
   const std::string scheme = viscosity.describe();
-  app::shock_tube_figure({app::make_profile(sod2.particles, "SPH, glass start")}, sod2.exact,
-                         par.t_end, "Sod shock tube in 2D, t = " + format("%g", par.t_end),
-                         plot::Stamp{scheme, "M4", par.neighbours_2d,
-                                     static_cast<long long>(sod2.particles.size()), sod2.seconds,
-                                     ""})
+  app::shock_tube_figure(
+      {app::make_profile(sod2.particles, "SPH, glass start")}, sod2.exact, par.t_end,
+      "Sod shock tube in 2D, t = " + format("%g", par.t_end),
+      plot::Stamp{scheme, "M4", par.neighbours_2d, static_cast<long long>(sod2.particles.size()),
+                  sod2.seconds, ""})
       .save_png(chapter.figure_path("sod_2d.png").string());
   const std::string lattice_label =
       "SPH, lattice start (N = " + std::to_string(lattice3.particles.size()) + ")";
   app::Profile from_lattice = app::make_profile(lattice3.particles, lattice_label);
   from_lattice.color = plot::grey;
-  app::shock_tube_figure({from_lattice, app::make_profile(sod3.particles, "SPH, glass start")},
-                         sod3.exact, par.t_end,
-                         "Sod shock tube in 3D, t = " + format("%g", par.t_end),
-                         plot::Stamp{scheme, "M4", par.neighbours_3d,
-                                     static_cast<long long>(sod3.particles.size()), sod3.seconds,
-                                     "glass start"})
+  app::shock_tube_figure(
+      {from_lattice, app::make_profile(sod3.particles, "SPH, glass start")}, sod3.exact, par.t_end,
+      "Sod shock tube in 3D, t = " + format("%g", par.t_end),
+      plot::Stamp{scheme, "M4", par.neighbours_3d, static_cast<long long>(sod3.particles.size()),
+                  sod3.seconds, "glass start"})
       .save_png(chapter.figure_path("sod_3d.png").string());
   return result;
 }
@@ -731,9 +744,10 @@ double step4_monaghan_gingold_tube(const app::Chapter& chapter, const Parameters
   std::printf("  exact: p* = %.5f, v* = %.5f (Watkins' paper: shock spread over ~h for AV)\n",
               run.exact.star_pressure(), run.exact.star_velocity());
   std::printf("  L1(rho) = %.3e, L1(v) = %.3e, L1(P) = %.3e\n", e[0].L1, e[1].L1, e[2].L1);
-  std::printf("  velocity scatter / v*: shocked region %.1f %%, whole disturbed region %.1f %%\n"
-              "    (papers: ~15 %% for AV, Turner et al. 1995)\n",
-              100 * shocked, 100 * disturbed);
+  std::printf(
+      "  velocity scatter / v*: shocked region %.1f %%, whole disturbed region %.1f %%\n"
+      "    (papers: ~15 %% for AV, Turner et al. 1995)\n",
+      100 * shocked, 100 * disturbed);
   app::shock_tube_figure(
       {app::make_profile(run.particles, "SPH", -0.6, 0.6)}, run.exact, t,
       "Monaghan & Gingold (1983) tube, 3D, standard AV (cf. Watkins et al. 1996, Fig. 7)",
@@ -826,8 +840,9 @@ sph::ErrorVsTime error_study(const app::Chapter& chapter, const Parameters& par,
 /// extend with Selhammar's and Watkins' viscosities.
 
 double step5_error_against_run_time(const app::Chapter& chapter, const Parameters& par) {
-  std::printf("\nStep 5: error against run time in 1D, 2D and 3D, three strengths of the "
-              "viscosity\n");
+  std::printf(
+      "\nStep 5: error against run time in 1D, 2D and 3D, three strengths of the "
+      "viscosity\n");
   const auto rule_1d = sph::SmoothingLengthRule::from_density(par.neighbours_1d);
   const auto rule_2d = sph::SmoothingLengthRule::neighbour_number(par.neighbours_2d, 1);
   const auto rule_3d = sph::SmoothingLengthRule::neighbour_number(par.neighbours_3d, 2);
@@ -887,9 +902,8 @@ void check_claims(app::Chapter& chapter, const Parameters& par, const Findings& 
   for (const Sod1D::Row& row : f.sod_1d.rows) {
     const double allowed = par.quick ? 4.0 * row.target : row.target;
     if (is_sod) {
-      chapter.check(row.l1_rho <= allowed,
-                    format("Sod 1D: L1(rho) = %.2e at N = %d exceeds %g", row.l1_rho,
-                           row.in_window, allowed));
+      chapter.check(row.l1_rho <= allowed, format("Sod 1D: L1(rho) = %.2e at N = %d exceeds %g",
+                                                  row.l1_rho, row.in_window, allowed));
     }
     chapter.check(row.momentum_drift < 1e-12,
                   format("Sod 1D: momentum drifted by %.2e", row.momentum_drift));
@@ -900,9 +914,9 @@ void check_claims(app::Chapter& chapter, const Parameters& par, const Findings& 
   const double l1_at_one = f.eta.l1_rho.front();
   const double l1_at_1p2 = f.eta.l1_rho[near_1p2 - f.eta.eta.begin()];
   if (is_sod) {
-    chapter.check(l1_at_one < l1_at_1p2,
-                  format("h = dx should beat h = 1.2 dx in 1D: L1 %.2e vs %.2e", l1_at_one,
-                         l1_at_1p2));
+    chapter.check(
+        l1_at_one < l1_at_1p2,
+        format("h = dx should beat h = 1.2 dx in 1D: L1 %.2e vs %.2e", l1_at_one, l1_at_1p2));
   }
   const MultiD& m = f.multi_d;
   if (is_sod) {
@@ -918,7 +932,8 @@ void check_claims(app::Chapter& chapter, const Parameters& par, const Findings& 
                          m.p_glass, 100 * allowed, m.p_star));
     chapter.check(m.p_lattice / m.p_star - 1 > 0.1,
                   format("3D lattice start: the plateau pressure %.4f no longer shows the stalled "
-                         "rarefaction (expected > 10 %% high)", m.p_lattice));
+                         "rarefaction (expected > 10 %% high)",
+                         m.p_lattice));
   }
   chapter.check(f.mg_scatter < 0.15,
                 format("MG tube: velocity scatter %.3f not below the papers' 15 %%", f.mg_scatter));

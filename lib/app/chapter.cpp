@@ -280,21 +280,20 @@ int Chapter::finish() {
   const int failed = failed_checks();
   const int total = static_cast<int>(checks_.size());
   if (parsed_) {
-    summary("checks", std::to_string(total - failed) + " passed, " + std::to_string(failed) +
-                          " failed");
+    summary("checks",
+            std::to_string(total - failed) + " passed, " + std::to_string(failed) + " failed");
     char seconds[32];
     std::snprintf(seconds, sizeof seconds, "%.3f s", clock_.seconds());
     summary("run_time", seconds);
   }
   if (failed == 0) {
     if (total > 0) {
-      *out_ << "All " << total << (total == 1 ? " check" : " checks") << " passed.\n"
-            << std::flush;
+      *out_ << "All " << total << (total == 1 ? " check" : " checks") << " passed.\n" << std::flush;
     }
     return 0;
   }
-  *err_ << name_ << ": error: " << failed << " of " << total
-        << (total == 1 ? " check" : " checks") << " failed:\n";
+  *err_ << name_ << ": error: " << failed << " of " << total << (total == 1 ? " check" : " checks")
+        << " failed:\n";
   for (const Check& c : checks_) {
     if (!c.ok) *err_ << "  - " << c.message << "\n";
   }

@@ -43,10 +43,10 @@ namespace app {
 
 /// How long the streams run, what is recorded, and the step budget.
 struct StreamsRunOptions {
-  double t_end = 0.4;            ///< the run stops at this time (or earlier, see StreamsRun)
-  int outputs = 200;             ///< times, evenly spaced up to t_end, at which paths are sampled
-  int paths = 24;                ///< particles tracked per stream
-  long max_steps = 10'000'000;   ///< the step budget
+  double t_end = 0.4;           ///< the run stops at this time (or earlier, see StreamsRun)
+  int outputs = 200;            ///< times, evenly spaced up to t_end, at which paths are sampled
+  int paths = 24;               ///< particles tracked per stream
+  long max_steps = 10'000'000;  ///< the step budget
 };
 
 /// What a chapter keeps of one run of the colliding streams.
@@ -61,10 +61,10 @@ struct StreamsRun {
   std::vector<std::vector<double>> paths;  ///< paths[k][m]: x of tracked[k] at times[m]
   sph::OrderInversions inversions;         ///< pairs that have passed each other
   long steps = 0;
-  double seconds = 0;                      ///< wall time, set-up included
-  double t_reached = 0;                    ///< t_end, or the time at which the run stopped
-  double last_dt = 0;                      ///< the last time step
-  std::string stopped;                     ///< why the run stopped early, or empty
+  double seconds = 0;    ///< wall time, set-up included
+  double t_reached = 0;  ///< t_end, or the time at which the run stopped
+  double last_dt = 0;    ///< the last time step
+  std::string stopped;   ///< why the run stopped early, or empty
 };
 
 /// Runs the streams of \p setup with the scene \p Scene (its terms given by \p terms, an ideal

@@ -35,11 +35,11 @@ namespace app {
 
 /// How the error figure looks.
 struct ErrorFigureOptions {
-  std::string title{};                   ///< default: the study's title
-  std::string stamp{};                   ///< markup line at the foot (plot::format_stamp() builds the usual one)
-  std::vector<std::string> quantities{}; ///< panels to draw; default: every quantity, in order
-  int columns = 3;                       ///< panels per row, at most (rows are balanced)
-  int width = 0;                         ///< pixels; 0: the figure engine's default per panel
+  std::string title{};  ///< default: the study's title
+  std::string stamp{};  ///< markup line at the foot (plot::format_stamp() builds the usual one)
+  std::vector<std::string> quantities{};  ///< panels to draw; default: every quantity, in order
+  int columns = 3;                        ///< panels per row, at most (rows are balanced)
+  int width = 0;                          ///< pixels; 0: the figure engine's default per panel
   int height = 0;
 };
 
@@ -68,7 +68,7 @@ inline std::string as_markup(const std::string& text) {
 /// A name that already contains markup (a backslash, '_' or '^') is used as it is.
 inline std::string quantity_markup(const std::string& quantity) {
   if (quantity.find_first_of("\\_^") != std::string::npos) return quantity;
-  static const char* const greek[] = {"alpha", "beta", "gamma", "delta", "epsilon", "eta", "mu",
+  static const char* const greek[] = {"alpha", "beta", "gamma", "delta", "epsilon", "eta",  "mu",
                                       "nu",    "rho",  "sigma", "tau",   "omega",   "Delta"};
   std::string out;
   std::size_t i = 0;
@@ -83,7 +83,8 @@ inline std::string quantity_markup(const std::string& quantity) {
     while (end < quantity.size() && std::isalpha(static_cast<unsigned char>(quantity[end]))) ++end;
     const std::string word = quantity.substr(i, end - i);
     std::size_t digits = end;
-    while (digits < quantity.size() && std::isdigit(static_cast<unsigned char>(quantity[digits]))) ++digits;
+    while (digits < quantity.size() && std::isdigit(static_cast<unsigned char>(quantity[digits])))
+      ++digits;
     if (word == "L" && digits > end) {
       out += "L_" + quantity.substr(end, digits - end);
       i = digits;
@@ -91,8 +92,8 @@ inline std::string quantity_markup(const std::string& quantity) {
     }
     if (word == "Linf") {
       out += "L_\\infty";
-    } else if (std::find_if(std::begin(greek), std::end(greek), [&](const char* g) { return word == g; }) !=
-               std::end(greek)) {
+    } else if (std::find_if(std::begin(greek), std::end(greek),
+                            [&](const char* g) { return word == g; }) != std::end(greek)) {
       out += "\\" + word;
     } else {
       out += word;
@@ -104,17 +105,20 @@ inline std::string quantity_markup(const std::string& quantity) {
 
 /// Markers and dashes that tell the methods apart in greyscale too.
 inline plot::Marker marker_of(std::size_t k) {
-  static const plot::Marker markers[] = {plot::Marker::circle, plot::Marker::square, plot::Marker::triangle,
-                                         plot::Marker::diamond, plot::Marker::plus, plot::Marker::cross};
+  static const plot::Marker markers[] = {plot::Marker::circle,   plot::Marker::square,
+                                         plot::Marker::triangle, plot::Marker::diamond,
+                                         plot::Marker::plus,     plot::Marker::cross};
   return markers[k % 6];
 }
 inline plot::Dash dash_of(std::size_t k) {
-  static const plot::Dash dashes[] = {plot::Dash::solid, plot::Dash::dashed, plot::Dash::dashdot, plot::Dash::dotted};
+  static const plot::Dash dashes[] = {plot::Dash::solid, plot::Dash::dashed, plot::Dash::dashdot,
+                                      plot::Dash::dotted};
   return dashes[k % 4];
 }
 
 /// "alpha=1, beta=2 (p = 0.98)", or the bare name when no order can be fitted.
-inline std::string legend_label(const sph::ErrorVsTime& study, const std::string& method, const std::string& quantity) {
+inline std::string legend_label(const sph::ErrorVsTime& study, const std::string& method,
+                                const std::string& quantity) {
   std::string label = as_markup(method);
   try {
     char order[32];
@@ -126,7 +130,8 @@ inline std::string legend_label(const sph::ErrorVsTime& study, const std::string
 }
 
 /// Draw one quantity's panel: one line per method through its (time, error) points.
-inline void draw_panel(plot::Axes& axes, const sph::ErrorVsTime& study, const std::string& quantity) {
+inline void draw_panel(plot::Axes& axes, const sph::ErrorVsTime& study,
+                       const std::string& quantity) {
   axes.xscale(plot::Scale::log).yscale(plot::Scale::log);
   axes.xlabel("wall-clock time [s]").ylabel(quantity_markup(quantity));
   const std::vector<std::string> methods = study.methods();
@@ -141,8 +146,12 @@ inline void draw_panel(plot::Axes& axes, const sph::ErrorVsTime& study, const st
       }
     }
     if (seconds.empty()) continue;
-    axes.line(seconds, error, {.label = legend_label(study, methods[k], quantity), .style = dash_of(k),
-                               .width = 1.6, .marker = marker_of(k), .marker_size = 8.0});
+    axes.line(seconds, error,
+              {.label = legend_label(study, methods[k], quantity),
+               .style = dash_of(k),
+               .width = 1.6,
+               .marker = marker_of(k),
+               .marker_size = 8.0});
   }
   axes.legend(plot::Corner::best);  // the corner that covers the fewest points
 }
@@ -151,10 +160,12 @@ inline void draw_panel(plot::Axes& axes, const sph::ErrorVsTime& study, const st
 
 /// The figure: one log-log panel per error quantity, error against wall-clock time, one line
 /// per method.  Throws sph::Error if the study has no runs or a requested quantity is unknown.
-inline plot::Figure error_figure(const sph::ErrorVsTime& study, const ErrorFigureOptions& options = {}) {
+inline plot::Figure error_figure(const sph::ErrorVsTime& study,
+                                 const ErrorFigureOptions& options = {}) {
   // Which panels, and how they are arranged.
   const std::vector<std::string> known = study.quantities();
-  const std::vector<std::string> quantities = options.quantities.empty() ? known : options.quantities;
+  const std::vector<std::string> quantities =
+      options.quantities.empty() ? known : options.quantities;
   sph::require(!quantities.empty(), "error figure '" + study.title() + "': the study has no runs");
   for (const std::string& q : quantities) {
     sph::require(std::find(known.begin(), known.end(), q) != known.end(),
@@ -166,10 +177,12 @@ inline plot::Figure error_figure(const sph::ErrorVsTime& study, const ErrorFigur
   const int cols = (count + rows - 1) / rows;
   // The figure, its title and stamp.
   plot::Figure figure(rows, cols, {.width = options.width, .height = options.height});
-  figure.title(error_figure_detail::as_markup(options.title.empty() ? study.title() : options.title));
+  figure.title(
+      error_figure_detail::as_markup(options.title.empty() ? study.title() : options.title));
   figure.stamp(options.stamp);
   // One panel per quantity; unused cells of the last row stay empty.
-  for (int k = 0; k < count; ++k) error_figure_detail::draw_panel(figure.panel(k), study, quantities[k]);
+  for (int k = 0; k < count; ++k)
+    error_figure_detail::draw_panel(figure.panel(k), study, quantities[k]);
   return figure;
 }
 

@@ -26,8 +26,8 @@ struct Profile {
 
 /// Collect the profile of a particle set (only particles within [x_min, x_max]).
 template <int D>
-Profile make_profile(const sph::Particles<D>& p, std::string label, double x_min = -0.5, double x_max = 0.5,
-                     plot::Color color = plot::black) {
+Profile make_profile(const sph::Particles<D>& p, std::string label, double x_min = -0.5,
+                     double x_max = 0.5, plot::Color color = plot::black) {
   Profile prof{std::move(label), {}, {}, {}, {}, {}, color};
   for (std::size_t i = 0; i < p.size(); ++i) {
     const double x = p.position[i][0];
@@ -53,11 +53,13 @@ struct ShockTubeFigureOptions {
 
 /// Draw rho, v, P, u (2 x 2 panels; without P, 3 x 1) of the profiles against the exact
 /// solution at time t.
-inline plot::Figure shock_tube_figure(const std::vector<Profile>& profiles, const sph::RiemannSolution& exact,
-                                      double t, const std::string& title, const plot::Stamp& stamp,
+inline plot::Figure shock_tube_figure(const std::vector<Profile>& profiles,
+                                      const sph::RiemannSolution& exact, double t,
+                                      const std::string& title, const plot::Stamp& stamp,
                                       const ShockTubeFigureOptions& options = {}) {
   sph::require(!profiles.empty(), "shock tube figure: no profiles to draw");
-  // The exact solution on a fine grid (it has jumps: 4000 points resolve them to 0.03 % of the window).
+  // The exact solution on a fine grid (it has jumps: 4000 points resolve them to 0.03 % of the
+  // window).
   const int samples = 4000;
   std::vector<double> xs(samples), rho(samples), v(samples), P(samples), u(samples);
   for (int k = 0; k < samples; ++k) {
@@ -86,10 +88,14 @@ inline plot::Figure shock_tube_figure(const std::vector<Profile>& profiles, cons
     plot::Axes& ax = figure.panel(static_cast<int>(k));
     ax.xlabel("x  [code units]").ylabel(panels[k].label).xlim(options.x_min, options.x_max);
     for (const Profile& prof : profiles) {
-      ax.scatter(prof.x, prof.*(panels[k].values), {.label = prof.label, .color = prof.color, .size = prof.size});
+      ax.scatter(prof.x, prof.*(panels[k].values),
+                 {.label = prof.label, .color = prof.color, .size = prof.size});
     }
     ax.line(xs, *panels[k].exact_values,
-            {.label = options.exact_label, .color = plot::red, .style = options.exact_style, .width = 1.6});
+            {.label = options.exact_label,
+             .color = plot::red,
+             .style = options.exact_style,
+             .width = 1.6});
     if (k == 0) ax.legend(plot::Corner::upper_right);
   }
   return figure;

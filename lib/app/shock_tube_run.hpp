@@ -50,25 +50,25 @@ enum class RunReport {
 
 /// How a shock tube is integrated and reported.
 struct TubeRunOptions {
-  double t_end = 0.2;                 ///< the run stops at this time
-  double courant = 0.3;               ///< \f$ \varepsilon \f$ of Selhammar's eq 7
-  std::string label = "shock tube";   ///< names the run in the progress line and TubeRun::name
+  double t_end = 0.2;                ///< the run stops at this time
+  double courant = 0.3;              ///< \f$ \varepsilon \f$ of Selhammar's eq 7
+  std::string label = "shock tube";  ///< names the run in the progress line and TubeRun::name
   RunReport report = RunReport::live;
 };
 
 /// What a chapter keeps of one run.
 template <int D>
 struct TubeRun {
-  std::string name;                ///< the label it ran under
-  sph::Particles<D> particles;     ///< at the end time
-  sph::RiemannSolution exact;      ///< the Riemann problem of the tube's two states
-  int in_window = 0;               ///< particles in the window \f$ |x| \le 0.5 \f$ at t = 0
-  long steps = 0;                  ///< time steps taken
-  double seconds = 0;              ///< wall time of the integration
-  double energy_change = 0;        ///< \f$ |E(t) - E(0)|/E(0) \f$, E kinetic plus thermal
+  std::string name;             ///< the label it ran under
+  sph::Particles<D> particles;  ///< at the end time
+  sph::RiemannSolution exact;   ///< the Riemann problem of the tube's two states
+  int in_window = 0;            ///< particles in the window \f$ |x| \le 0.5 \f$ at t = 0
+  long steps = 0;               ///< time steps taken
+  double seconds = 0;           ///< wall time of the integration
+  double energy_change = 0;     ///< \f$ |E(t) - E(0)|/E(0) \f$, E kinetic plus thermal
   /// \f$ |\mathbf P(t) - \mathbf P(0)| / \sum_i m_i|\mathbf v_i(t)| \f$, see sph::momentum_scale
   double momentum_drift = 0;
-  std::string limit;               ///< what limited the last full time step, e.g. "Courant (eq 7)"
+  std::string limit;  ///< what limited the last full time step, e.g. "Courant (eq 7)"
 };
 
 /// Builds the tube of \p setup with the smoothing-length rule \p rule, integrates it to
@@ -107,7 +107,8 @@ TubeRun<Scene::D> run_shock_tube(const sph::ShockTubeSetup& setup,
   if (options.report == RunReport::none) display.live = nullptr;
   Progress progress(options.t_end, options.label, display);
   sim.run_until(options.t_end, [&](const sph::Simulation<Scene>& s) {
-    progress.update(s.steps() - 1, s.time(), s.last_limit().dt);  // (update takes the index of the step)
+    progress.update(s.steps() - 1, s.time(),
+                    s.last_limit().dt);  // (update takes the index of the step)
     if (s.last_limit().criterion != "output time") run.limit = s.last_limit().criterion;
   });
   progress.finish();

@@ -23,7 +23,7 @@ namespace app {
 /// `s.c_str()` (passing the std::string itself does not compile).
 template <class... Args>
 std::string format(const char* pattern, Args... args) {
-  static_assert(((std::is_arithmetic_v<Args> || std::is_pointer_v<Args>) && ...),
+  static_assert(((std::is_arithmetic_v<Args> || std::is_pointer_v<Args>)&&...),
                 "app::format takes numbers and C strings (for a std::string s, pass s.c_str())");
   const int length = std::snprintf(nullptr, 0, pattern, args...);
   if (length <= 0) return {};

@@ -101,21 +101,25 @@ Axes::Series& Axes::add_series(Kind kind, std::span<const double> x, std::span<c
     if (!label.empty()) id.append(" ").append(quote(label));
     parse_markup(label);
     require(!x.empty() || !y.empty(), id + ": no data (empty arrays)");
-    require(x.size() == y.size(), id + ": x has " + std::to_string(x.size()) + " values but y has " +
-                                      std::to_string(y.size()));
+    require(x.size() == y.size(), id + ": x has " + std::to_string(x.size()) +
+                                      " values but y has " + std::to_string(y.size()));
     std::size_t bad = 0;
     for (std::size_t i = 0; i < x.size(); ++i) bad += !(finite(x[i]) && finite(y[i]));
-    require(bad < x.size(), id + ": all " + std::to_string(x.size()) + " points are NaN or infinite");
+    require(bad < x.size(),
+            id + ": all " + std::to_string(x.size()) + " points are NaN or infinite");
     skipped_nonfinite_ += bad;
 
-    Series s{kind, {x.begin(), x.end()}, {y.begin(), y.end()}, {}, {}, {}, {}, black, std::move(label)};
+    Series s{kind,  {x.begin(), x.end()}, {y.begin(), y.end()}, {}, {}, {}, {},
+             black, std::move(label)};
     series_.push_back(std::move(s));
     return series_.back();
 }
 
-Axes& Axes::scatter(std::span<const double> x, std::span<const double> y, const ScatterOptions& options) {
+Axes& Axes::scatter(std::span<const double> x, std::span<const double> y,
+                    const ScatterOptions& options) {
     require(options.size > 0 && options.size <= 80, name() + ": scatter marker size " +
-                                                        std::to_string(options.size) + " px is outside (0, 80]");
+                                                        std::to_string(options.size) +
+                                                        " px is outside (0, 80]");
     require(options.alpha > 0 && options.alpha <= 1, name() + ": scatter alpha must lie in (0, 1]");
     Series& s = add_series(Kind::scatter, x, y, options.label, "scatter");
     s.scatter = options;
@@ -123,11 +127,13 @@ Axes& Axes::scatter(std::span<const double> x, std::span<const double> y, const 
     return *this;
 }
 
-Axes& Axes::scatter(std::span<const double> x, std::span<const double> y, std::span<const double> values,
-                    const ColorScatterOptions& options) {
-    require(values.size() == x.size(), name() + ": coloured scatter has " + std::to_string(x.size()) +
-                                           " points but " + std::to_string(values.size()) + " values");
-    require(options.size > 0 && options.size <= 80, name() + ": scatter marker size is outside (0, 80]");
+Axes& Axes::scatter(std::span<const double> x, std::span<const double> y,
+                    std::span<const double> values, const ColorScatterOptions& options) {
+    require(values.size() == x.size(), name() + ": coloured scatter has " +
+                                           std::to_string(x.size()) + " points but " +
+                                           std::to_string(values.size()) + " values");
+    require(options.size > 0 && options.size <= 80,
+            name() + ": scatter marker size is outside (0, 80]");
     Series& s = add_series(Kind::color_scatter, x, y, options.label, "coloured scatter");
     s.values.assign(values.begin(), values.end());
     s.color_scatter = options;
@@ -136,9 +142,10 @@ Axes& Axes::scatter(std::span<const double> x, std::span<const double> y, std::s
 }
 
 Axes& Axes::line(std::span<const double> x, std::span<const double> y, const LineOptions& options) {
-    require(options.width > 0 && options.width <= 40, name() + ": line width " + std::to_string(options.width) +
-                                                          " px is outside (0, 40]");
-    require(options.marker_size > 0 && options.marker_size <= 80, name() + ": marker size is outside (0, 80]");
+    require(options.width > 0 && options.width <= 40,
+            name() + ": line width " + std::to_string(options.width) + " px is outside (0, 40]");
+    require(options.marker_size > 0 && options.marker_size <= 80,
+            name() + ": marker size is outside (0, 80]");
     Series& s = add_series(Kind::line, x, y, options.label, "line");
     s.line = options;
     s.color = options.color ? *options.color : next_color();
@@ -172,18 +179,21 @@ Axes& Axes::image(const Eigen::ArrayXXd& grid, const Extent& extent, const Image
 Axes& Axes::image(std::span<const double> values, int nx, int ny, const Extent& extent,
                   const ImageOptions& options) {
     const std::string id = name() + ", image";
-    require(nx > 0 && ny > 0, id + ": empty grid (" + std::to_string(nx) + "×" + std::to_string(ny) + ")");
-    require(nx <= 16384 && ny <= 16384, id + ": a " + std::to_string(nx) + "×" + std::to_string(ny) +
+    require(nx > 0 && ny > 0,
+            id + ": empty grid (" + std::to_string(nx) + "×" + std::to_string(ny) + ")");
+    require(nx <= 16384 && ny <= 16384, id + ": a " + std::to_string(nx) + "×" +
+                                            std::to_string(ny) +
                                             " grid exceeds 16384 cells a side");
     require(values.size() == static_cast<std::size_t>(nx) * static_cast<std::size_t>(ny),
-            id + ": " + std::to_string(values.size()) + " values for a " + std::to_string(nx) + "×" +
-                std::to_string(ny) + " grid");
+            id + ": " + std::to_string(values.size()) + " values for a " + std::to_string(nx) +
+                "×" + std::to_string(ny) + " grid");
     require(finite(extent.x0) && finite(extent.x1) && finite(extent.y0) && finite(extent.y1) &&
                 extent.x0 < extent.x1 && extent.y0 < extent.y1,
             id + ": the extent needs finite x0 < x1 and y0 < y1");
-    const auto bad = static_cast<std::size_t>(std::count_if(values.begin(), values.end(),
-                                                            [](double v) { return !finite(v); }));
-    require(bad < values.size(), id + ": all " + std::to_string(values.size()) + " cells are NaN or infinite");
+    const auto bad = static_cast<std::size_t>(
+        std::count_if(values.begin(), values.end(), [](double v) { return !finite(v); }));
+    require(bad < values.size(),
+            id + ": all " + std::to_string(values.size()) + " cells are NaN or infinite");
     parse_markup(options.colorbar_label);
     skipped_nonfinite_ += bad;
     layers_.push_back({{values.begin(), values.end()}, nx, ny, extent, options});
@@ -245,9 +255,11 @@ void Axes::resolve_limits() {
     std::tie(r_.x_lo, r_.x_hi) = xlim_ ? *xlim_ : auto_limits(true);
     std::tie(r_.y_lo, r_.y_hi) = ylim_ ? *ylim_ : auto_limits(false);
     if (xscale_ == Scale::log && r_.x_lo <= 0)
-        throw Error(name() + ": the logarithmic x axis needs positive limits, not " + std::to_string(r_.x_lo));
+        throw Error(name() + ": the logarithmic x axis needs positive limits, not " +
+                    std::to_string(r_.x_lo));
     if (yscale_ == Scale::log && r_.y_lo <= 0)
-        throw Error(name() + ": the logarithmic y axis needs positive limits, not " + std::to_string(r_.y_lo));
+        throw Error(name() + ": the logarithmic y axis needs positive limits, not " +
+                    std::to_string(r_.y_lo));
 
     // Points a log axis cannot show are skipped and counted (once per render).
     skipped_nonpositive_ = 0;
@@ -268,8 +280,9 @@ Color Axes::ColorRange::at(double value) const {
     return map_color(map, t);
 }
 
-Axes::ColorRange Axes::resolve_color_range(Colormap map, std::optional<double> zmin, std::optional<double> zmax,
-                                           bool log, const std::string& label,
+Axes::ColorRange Axes::resolve_color_range(Colormap map, std::optional<double> zmin,
+                                           std::optional<double> zmax, bool log,
+                                           const std::string& label,
                                            std::span<const double> values) const {
     double lo = std::numeric_limits<double>::infinity(), hi = -lo;
     for (double v : values) {
@@ -280,11 +293,18 @@ Axes::ColorRange Axes::resolve_color_range(Colormap map, std::optional<double> z
     lo = zmin.value_or(lo);
     hi = zmax.value_or(hi);
     if (!(lo <= hi) || !finite(lo) || !finite(hi))
-        throw Error(name() + ": no " + std::string(log ? "positive " : "finite ") + "values for the colour scale");
+        throw Error(name() + ": no " + std::string(log ? "positive " : "finite ") +
+                    "values for the colour scale");
     if (log && lo <= 0) throw Error(name() + ": a logarithmic colour scale needs zmin > 0");
     if (lo == hi) {
-        if (log) { lo /= 2; hi *= 2; }
-        else { const double d = lo == 0 ? 1.0 : 0.1 * std::abs(lo); lo -= d; hi += d; }
+        if (log) {
+            lo /= 2;
+            hi *= 2;
+        } else {
+            const double d = lo == 0 ? 1.0 : 0.1 * std::abs(lo);
+            lo -= d;
+            hi += d;
+        }
     }
     return {map, lo, hi, log, label};
 }
@@ -296,8 +316,10 @@ double Axes::axis_u(double v, bool x_axis) const {
 
 Point Axes::to_pixel(double x, double y) const {
     require_rendered();
-    const double ux = (axis_u(x, true) - axis_u(r_.x_lo, true)) / (axis_u(r_.x_hi, true) - axis_u(r_.x_lo, true));
-    const double uy = (axis_u(y, false) - axis_u(r_.y_lo, false)) / (axis_u(r_.y_hi, false) - axis_u(r_.y_lo, false));
+    const double ux =
+        (axis_u(x, true) - axis_u(r_.x_lo, true)) / (axis_u(r_.x_hi, true) - axis_u(r_.x_lo, true));
+    const double uy = (axis_u(y, false) - axis_u(r_.y_lo, false)) /
+                      (axis_u(r_.y_hi, false) - axis_u(r_.y_lo, false));
     return {r_.frame.x0 + ux * r_.frame.width(), r_.frame.y1 - uy * r_.frame.height()};
 }
 

@@ -42,22 +42,23 @@ struct Image;
 
 /// How points of a scatter series look.  Sizes are pixels of the final image.
 struct ScatterOptions {
-    std::string label{};            ///< legend text (markup); empty: not in the legend
-    std::optional<Color> color{};   ///< default: the panel's next cycle colour
-    double size = 3.0;            ///< marker diameter in pixels
+    std::string label{};           ///< legend text (markup); empty: not in the legend
+    std::optional<Color> color{};  ///< default: the panel's next cycle colour
+    double size = 3.0;             ///< marker diameter in pixels
     Marker marker = Marker::circle;
-    bool filled = true;           ///< false: outlined shapes
-    double alpha = 1.0;           ///< opacity in (0, 1]
+    bool filled = true;  ///< false: outlined shapes
+    double alpha = 1.0;  ///< opacity in (0, 1]
 };
 
 /// How a line series looks.
 struct LineOptions {
-    std::string label{};            ///< legend text (markup); empty: not in the legend
-    std::optional<Color> color{};   ///< default: the panel's next cycle colour (grey for hline/vline)
+    std::string label{};  ///< legend text (markup); empty: not in the legend
+    std::optional<Color>
+        color{};  ///< default: the panel's next cycle colour (grey for hline/vline)
     Dash style = Dash::solid;
-    double width = 1.5;           ///< line width in pixels
-    Marker marker = Marker::none; ///< a marker at every data point, if not none
-    double marker_size = 8.0;     ///< marker diameter in pixels
+    double width = 1.5;            ///< line width in pixels
+    Marker marker = Marker::none;  ///< a marker at every data point, if not none
+    double marker_size = 8.0;      ///< marker diameter in pixels
     bool marker_filled = true;
 };
 
@@ -65,11 +66,11 @@ struct LineOptions {
 /// A panel shows one colour bar, that of the last image or coloured scatter asking for one.
 struct ImageOptions {
     Colormap map = Colormap::viridis;
-    std::optional<double> zmin{};   ///< default: the smallest finite (positive, if log) value
-    std::optional<double> zmax{};   ///< default: the largest finite value
-    bool log = false;             ///< map log10 of the value
-    std::string colorbar_label{};   ///< markup, beside the colour bar
-    bool colorbar = true;         ///< draw a colour bar at the right of the panel
+    std::optional<double> zmin{};  ///< default: the smallest finite (positive, if log) value
+    std::optional<double> zmax{};  ///< default: the largest finite value
+    bool log = false;              ///< map log10 of the value
+    std::string colorbar_label{};  ///< markup, beside the colour bar
+    bool colorbar = true;          ///< draw a colour bar at the right of the panel
 };
 
 /// A scatter whose points are coloured by a third quantity.
@@ -82,7 +83,7 @@ struct ColorScatterOptions {
     bool colorbar = true;
     double size = 3.0;
     Marker marker = Marker::circle;
-    std::string label{};            ///< legend text; the legend shows the map's middle colour
+    std::string label{};  ///< legend text; the legend shows the map's middle colour
 };
 
 /// The data rectangle an image covers: x0..x1 along x, y0..y1 along y.
@@ -99,8 +100,8 @@ enum class Align { left, center, right };
 /// Text placed at data coordinates.
 struct TextOptions {
     Color color = black;
-    double size = 1.0;            ///< relative to the figure's font size
-    Align align = Align::left;    ///< which end of the text sits at x; vertically centred on y
+    double size = 1.0;          ///< relative to the figure's font size
+    Align align = Align::left;  ///< which end of the text sits at x; vertically centred on y
 };
 
 /// One panel: a frame with ticks on all four sides, labels, and layers of data.
@@ -108,29 +109,31 @@ class Axes {
   public:
     /// \name Labels and limits
     /// \{
-    Axes& xlabel(std::string markup);   ///< e.g. "x [length]"; throws on bad markup
-    Axes& ylabel(std::string markup);   ///< e.g. "\\rho"
-    Axes& title(std::string markup);    ///< a small title centred above the frame
-    Axes& letter(std::string markup);   ///< replaces the automatic "(a)"; "" hides it
-    Axes& xlim(double lo, double hi);   ///< fixed limits (lo < hi); default: from the data
+    Axes& xlabel(std::string markup);  ///< e.g. "x [length]"; throws on bad markup
+    Axes& ylabel(std::string markup);  ///< e.g. "\\rho"
+    Axes& title(std::string markup);   ///< a small title centred above the frame
+    Axes& letter(std::string markup);  ///< replaces the automatic "(a)"; "" hides it
+    Axes& xlim(double lo, double hi);  ///< fixed limits (lo < hi); default: from the data
     Axes& ylim(double lo, double hi);
     Axes& xscale(Scale scale);
     Axes& yscale(Scale scale);
-    Axes& equal_aspect(bool on = true); ///< one data unit is as long on x as on y
+    Axes& equal_aspect(bool on = true);          ///< one data unit is as long on x as on y
     Axes& legend(Corner corner = Corner::best);  ///< show a legend of the labelled series
-    Axes& hide(bool hidden = true);     ///< leave this panel's cell empty (no frame, no letter)
+    Axes& hide(bool hidden = true);  ///< leave this panel's cell empty (no frame, no letter)
     /// \}
 
     /// \name Data
     /// Data is copied; NaN and infinities are skipped and counted (see skipped_points()).
     /// \{
     /// Markers at (x[i], y[i]), all in one GL draw call (10^6 points take well under a second).
-    Axes& scatter(std::span<const double> x, std::span<const double> y, const ScatterOptions& options = {});
+    Axes& scatter(std::span<const double> x, std::span<const double> y,
+                  const ScatterOptions& options = {});
     /// Markers coloured by values[i] through a colour map, with a colour bar by default.
-    Axes& scatter(std::span<const double> x, std::span<const double> y, std::span<const double> values,
-                  const ColorScatterOptions& options);
+    Axes& scatter(std::span<const double> x, std::span<const double> y,
+                  std::span<const double> values, const ColorScatterOptions& options);
     /// A polyline through the points in the order given, broken at skipped points.
-    Axes& line(std::span<const double> x, std::span<const double> y, const LineOptions& options = {});
+    Axes& line(std::span<const double> x, std::span<const double> y,
+               const LineOptions& options = {});
     /// A reference level across the panel (grey unless a colour is given); it counts for the
     /// y limits.
     Axes& hline(double y, const LineOptions& options = {});
@@ -140,7 +143,8 @@ class Axes {
     /// the (x0, y0) corner.  NaN cells (and cells ≤ 0 with a log colour scale) stay blank.
     /// Images are drawn beneath all other series.  On a logarithmic axis the cells are spread
     /// evenly between the extent's edges on screen.
-    Axes& image(const Eigen::ArrayXXd& grid, const Extent& extent, const ImageOptions& options = {});
+    Axes& image(const Eigen::ArrayXXd& grid, const Extent& extent,
+                const ImageOptions& options = {});
     /// The same with values[i + nx * j] (x fastest).
     Axes& image(std::span<const double> values, int nx, int ny, const Extent& extent,
                 const ImageOptions& options = {});
@@ -161,11 +165,11 @@ class Axes {
     Rect frame() const;
     /// Data -> pixel position in the final image (pixel (i, j) covers [i, i+1) × [j, j+1)).
     Point to_pixel(double x, double y) const;
-    std::pair<double, double> xrange() const;         ///< the x limits used
-    std::pair<double, double> yrange() const;         ///< the y limits used
-    const TickSet& xticks() const;                    ///< the ticks drawn on the x axes
-    const TickSet& yticks() const;                    ///< the ticks drawn on the y axes
-    /// \}
+    std::pair<double, double> xrange() const;  ///< the x limits used
+    std::pair<double, double> yrange() const;  ///< the y limits used
+    const TickSet& xticks() const;             ///< the ticks drawn on the x axes
+    const TickSet& yticks() const;             ///< the ticks drawn on the y axes
+                                               /// \}
 
   private:
     friend class Figure;
@@ -211,7 +215,8 @@ class Axes {
         Rect legend_box;
         std::vector<const Series*> legend_entries;
         double font = 16;
-        double x_label_ascent = 0, x_label_height = 0, x_label_width = 0, y_label_width = 0, c_label_width = 0;
+        double x_label_ascent = 0, x_label_height = 0, x_label_width = 0, y_label_width = 0,
+               c_label_width = 0;
     };
     struct Margins {
         double left = 0, right = 0, top = 0, bottom = 0;
@@ -219,19 +224,20 @@ class Axes {
 
     // axes.cpp: data and limits
     std::string name() const;
-    Series& add_series(Kind kind, std::span<const double> x, std::span<const double> y, std::string label,
-                       const char* what);
+    Series& add_series(Kind kind, std::span<const double> x, std::span<const double> y,
+                       std::string label, const char* what);
     Color next_color();
     void resolve_limits();
     std::pair<double, double> auto_limits(bool x_axis) const;
     double axis_u(double v, bool x_axis) const;
     void require_rendered() const;
-    ColorRange resolve_color_range(Colormap map, std::optional<double> zmin, std::optional<double> zmax,
-                                   bool log, const std::string& label,
+    ColorRange resolve_color_range(Colormap map, std::optional<double> zmin,
+                                   std::optional<double> zmax, bool log, const std::string& label,
                                    std::span<const double> values) const;
 
     // axes_layout.cpp: ticks, margins, legend and colour bar geometry
-    Margins measure(detail::Font& font, double font_size, const Rect& cell, const Rect& frame_guess);
+    Margins measure(detail::Font& font, double font_size, const Rect& cell,
+                    const Rect& frame_guess);
     void place(detail::Font& font, const Rect& frame);
     void resolve_colorbar();
     TickSet fit_ticks(detail::Font& font, Scale scale, double lo, double hi, double length,
@@ -242,12 +248,16 @@ class Axes {
     // axes_draw.cpp: GL layers, then text
     void draw(detail::Canvas& canvas) const;
     void draw_images(detail::Canvas& canvas) const;
-    void draw_scatter(detail::Canvas& canvas, const detail::PanelTransform& to_px, const Series& s) const;
-    void draw_color_scatter(detail::Canvas& canvas, const detail::PanelTransform& to_px, const Series& s) const;
-    void draw_line(detail::Canvas& canvas, const detail::PanelTransform& to_px, const Series& s) const;
-    void draw_reference(detail::Canvas& canvas, const detail::PanelTransform& to_px, const Series& s) const;
-    void draw_stroke(detail::Canvas& canvas, std::span<const Point> points, const LineOptions& style,
-                     const Color& color) const;
+    void draw_scatter(detail::Canvas& canvas, const detail::PanelTransform& to_px,
+                      const Series& s) const;
+    void draw_color_scatter(detail::Canvas& canvas, const detail::PanelTransform& to_px,
+                            const Series& s) const;
+    void draw_line(detail::Canvas& canvas, const detail::PanelTransform& to_px,
+                   const Series& s) const;
+    void draw_reference(detail::Canvas& canvas, const detail::PanelTransform& to_px,
+                        const Series& s) const;
+    void draw_stroke(detail::Canvas& canvas, std::span<const Point> points,
+                     const LineOptions& style, const Color& color) const;
     void draw_frame(detail::Canvas& canvas) const;
     void draw_legend(detail::Canvas& canvas) const;
     void draw_colorbar(detail::Canvas& canvas) const;

@@ -25,7 +25,8 @@ struct detail::PanelTransform {
     bool log_x, log_y;
     double ax, bx, ay, by;  // pixel = a + b * u, u = value or log10(value)
 
-    PanelTransform(const Rect& frame, double x_lo, double x_hi, double y_lo, double y_hi, bool lx, bool ly)
+    PanelTransform(const Rect& frame, double x_lo, double x_hi, double y_lo, double y_hi, bool lx,
+                   bool ly)
         : log_x(lx), log_y(ly) {
         const double ux0 = lx ? std::log10(x_lo) : x_lo, ux1 = lx ? std::log10(x_hi) : x_hi;
         const double uy0 = ly ? std::log10(y_lo) : y_lo, uy1 = ly ? std::log10(y_hi) : y_hi;
@@ -71,11 +72,19 @@ void Axes::draw(Canvas& canvas) const {
     draw_images(canvas);
     for (const Series& s : series_) {
         switch (s.kind) {
-            case Kind::scatter: draw_scatter(canvas, to_px, s); break;
-            case Kind::color_scatter: draw_color_scatter(canvas, to_px, s); break;
-            case Kind::line: draw_line(canvas, to_px, s); break;
+            case Kind::scatter:
+                draw_scatter(canvas, to_px, s);
+                break;
+            case Kind::color_scatter:
+                draw_color_scatter(canvas, to_px, s);
+                break;
+            case Kind::line:
+                draw_line(canvas, to_px, s);
+                break;
             case Kind::hline:
-            case Kind::vline: draw_reference(canvas, to_px, s); break;
+            case Kind::vline:
+                draw_reference(canvas, to_px, s);
+                break;
         }
     }
     canvas.unclip();
@@ -85,11 +94,12 @@ void Axes::draw(Canvas& canvas) const {
     draw_legend(canvas);
 }
 
-// ---- Images ---------------------------------------------------------------------------------------
+// ---- Images -------------------------------------------------------------------------------------
 void Axes::draw_images(Canvas& canvas) const {
     for (const Layer& layer : layers_) {
         const ImageOptions& o = layer.options;
-        const ColorRange range = resolve_color_range(o.map, o.zmin, o.zmax, o.log, o.colorbar_label, layer.values);
+        const ColorRange range =
+            resolve_color_range(o.map, o.zmin, o.zmax, o.log, o.colorbar_label, layer.values);
         // NaN (and, on a log scale, non-positive) cells stay transparent.
         std::vector<std::uint8_t> rgba(layer.values.size() * 4, 0);
         for (std::size_t i = 0; i < layer.values.size(); ++i) {
@@ -105,7 +115,7 @@ void Axes::draw_images(Canvas& canvas) const {
     }
 }
 
-// ---- Series ---------------------------------------------------------------------------------------
+// ---- Series -------------------------------------------------------------------------------------
 void Axes::draw_stroke(Canvas& canvas, std::span<const Point> points, const LineOptions& style,
                        const Color& color) const {
     StrokeGeometry geometry;
@@ -127,7 +137,8 @@ void Axes::draw_scatter(Canvas& canvas, const PanelTransform& to_px, const Serie
 /// The same with a colour per point from the colour scale.
 void Axes::draw_color_scatter(Canvas& canvas, const PanelTransform& to_px, const Series& s) const {
     const ColorScatterOptions& o = s.color_scatter;
-    const ColorRange range = resolve_color_range(o.map, o.zmin, o.zmax, o.log, o.colorbar_label, s.values);
+    const ColorRange range =
+        resolve_color_range(o.map, o.zmin, o.zmax, o.log, o.colorbar_label, s.values);
     std::vector<float> xy;
     std::vector<std::uint8_t> rgba;
     for (std::size_t i = 0; i < s.x.size(); ++i) {
@@ -155,7 +166,8 @@ void Axes::draw_line(Canvas& canvas, const PanelTransform& to_px, const Series& 
     }
     draw_stroke(canvas, run, s.line, s.color);
     const LineOptions& o = s.line;
-    canvas.markers(vertices, o.marker_size, o.marker, o.marker_filled ? 0.0 : outline_width(o.marker_size), s.color);
+    canvas.markers(vertices, o.marker_size, o.marker,
+                   o.marker_filled ? 0.0 : outline_width(o.marker_size), s.color);
 }
 
 /// A horizontal or vertical reference line across the frame, on the pixel grid.
@@ -170,7 +182,7 @@ void Axes::draw_reference(Canvas& canvas, const PanelTransform& to_px, const Ser
     draw_stroke(canvas, line, s.line, s.color);
 }
 
-// ---- Frame and ticks ------------------------------------------------------------------------------
+// ---- Frame and ticks ----------------------------------------------------------------------------
 void Axes::draw_frame(Canvas& canvas) const {
     const Metrics m{r_.font};
     const Rect& f = r_.frame;
@@ -198,12 +210,13 @@ void Axes::draw_frame(Canvas& canvas) const {
     }
 }
 
-// ---- Colour bar -----------------------------------------------------------------------------------
+// ---- Colour bar ---------------------------------------------------------------------------------
 namespace {
 
 double colorbar_y(const Rect& bar, Scale scale, double lo, double hi, double v) {
-    const double t = scale == Scale::log ? (std::log10(v) - std::log10(lo)) / (std::log10(hi) - std::log10(lo))
-                                         : (v - lo) / (hi - lo);
+    const double t = scale == Scale::log
+                         ? (std::log10(v) - std::log10(lo)) / (std::log10(hi) - std::log10(lo))
+                         : (v - lo) / (hi - lo);
     return bar.y1 - t * bar.height();
 }
 
@@ -253,18 +266,21 @@ void Axes::draw_legend(Canvas& canvas) const {
 
     for (std::size_t k = 0; k < r_.legend_entries.size(); ++k) {
         const Series& s = *r_.legend_entries[k];
-        const double y = snap(box.y0 + m.legend_pad() + (k + 0.5) * m.legend_row() - 0.15 * m.legend_size(), 1.0);
+        const double y = snap(
+            box.y0 + m.legend_pad() + (k + 0.5) * m.legend_row() - 0.15 * m.legend_size(), 1.0);
         const double x0 = box.x0 + m.legend_pad(), x1 = x0 + m.legend_sample();
         const float centre[2] = {static_cast<float>((x0 + x1) / 2), static_cast<float>(y)};
         switch (s.kind) {
             case Kind::scatter: {
                 const double size = std::max(s.scatter.size, 0.45 * m.font);
-                canvas.markers(centre, size, s.scatter.marker, s.scatter.filled ? 0.0 : outline_width(size), s.color);
+                canvas.markers(centre, size, s.scatter.marker,
+                               s.scatter.filled ? 0.0 : outline_width(size), s.color);
                 break;
             }
             case Kind::color_scatter: {
                 const ColorScatterOptions& o = s.color_scatter;
-                canvas.markers(centre, std::max(o.size, 0.45 * m.font), o.marker, 0.0, map_color(o.map, 0.5));
+                canvas.markers(centre, std::max(o.size, 0.45 * m.font), o.marker, 0.0,
+                               map_color(o.map, 0.5));
                 break;
             }
             case Kind::line:
@@ -276,7 +292,8 @@ void Axes::draw_legend(Canvas& canvas) const {
                 canvas.triangles(geometry.triangles, s.color);
                 canvas.markers(geometry.dots, geometry.dot_size, Marker::circle, 0.0, s.color);
                 canvas.markers(centre, s.line.marker_size, s.line.marker,
-                               s.line.marker_filled ? 0.0 : outline_width(s.line.marker_size), s.color);
+                               s.line.marker_filled ? 0.0 : outline_width(s.line.marker_size),
+                               s.color);
                 break;
             }
         }
@@ -301,14 +318,16 @@ void Axes::draw_text(Font& font, Image& image) const {
     for (const Tick& t : r_.y_ticks.ticks) {
         if (t.label.empty()) continue;
         const double y = snap(to_pixel(r_.x_lo, t.value).y, w);
-        font.draw(image, t.label, size, f.x0 - m.tick_label_pad(), y, HAlign::right, VAlign::digits_middle, black);
+        font.draw(image, t.label, size, f.x0 - m.tick_label_pad(), y, HAlign::right,
+                  VAlign::digits_middle, black);
     }
     // Shared exponents: right of the x axis end, above the y axis top.
     if (!r_.x_ticks.multiplier.empty())
-        font.draw(image, r_.x_ticks.multiplier, size, f.x1 + 0.5 * r_.x_label_width + 0.4 * m.font, x_baseline, HAlign::left,
-                  VAlign::baseline, black);
+        font.draw(image, r_.x_ticks.multiplier, size, f.x1 + 0.5 * r_.x_label_width + 0.4 * m.font,
+                  x_baseline, HAlign::left, VAlign::baseline, black);
     if (!r_.y_ticks.multiplier.empty())
-        font.draw(image, r_.y_ticks.multiplier, size, f.x0, f.y0 - 0.4 * m.font, HAlign::left, VAlign::bottom, black);
+        font.draw(image, r_.y_ticks.multiplier, size, f.x0, f.y0 - 0.4 * m.font, HAlign::left,
+                  VAlign::bottom, black);
 
     // Axis labels.
     const double label_size = m.axis_label_size();
@@ -316,29 +335,33 @@ void Axes::draw_text(Font& font, Image& image) const {
     // "\rho" labels of neighbouring panels line up.
     if (!xlabel_.empty()) {
         const double top = f.y1 + m.tick_label_pad() + r_.x_label_height + m.axis_label_pad();
-        font.draw(image, xlabel_, label_size, (f.x0 + f.x1) / 2, top + font.measure_line(xlabel_, label_size).ascent,
-                  HAlign::center, VAlign::baseline, black);
+        font.draw(image, xlabel_, label_size, (f.x0 + f.x1) / 2,
+                  top + font.measure_line(xlabel_, label_size).ascent, HAlign::center,
+                  VAlign::baseline, black);
     }
     if (!ylabel_.empty()) {
         const double right = f.x0 - m.tick_label_pad() - r_.y_label_width - m.axis_label_pad();
-        font.draw(image, ylabel_, label_size, right - font.measure_line(ylabel_, label_size).descent,
-                  (f.y0 + f.y1) / 2, HAlign::center, VAlign::baseline, black, true);
+        font.draw(image, ylabel_, label_size,
+                  right - font.measure_line(ylabel_, label_size).descent, (f.y0 + f.y1) / 2,
+                  HAlign::center, VAlign::baseline, black, true);
     }
 
     // Panel letter at the top-left of the cell, title centred above the frame.
     if (!letter_.empty())
-        font.draw(image, letter_, m.letter_size(), r_.cell.x0 + m.outer_pad(), f.y0 - 0.5 * m.font, HAlign::left,
-                  VAlign::baseline, black);
+        font.draw(image, letter_, m.letter_size(), r_.cell.x0 + m.outer_pad(), f.y0 - 0.5 * m.font,
+                  HAlign::left, VAlign::baseline, black);
     if (!title_.empty())
-        font.draw(image, title_, m.title_size(), (f.x0 + f.x1) / 2, f.y0 - 0.5 * m.font, HAlign::center,
-                  VAlign::bottom, black);
+        font.draw(image, title_, m.title_size(), (f.x0 + f.x1) / 2, f.y0 - 0.5 * m.font,
+                  HAlign::center, VAlign::bottom, black);
 
     // Annotations at data points.
     for (const Annotation& a : annotations_) {
         const Point p = to_pixel(a.x, a.y);
-        const HAlign align = a.options.align == Align::left ? HAlign::left
-                           : a.options.align == Align::center ? HAlign::center : HAlign::right;
-        font.draw(image, a.markup, a.options.size * m.font, p.x, p.y, align, VAlign::digits_middle, a.options.color);
+        const HAlign align = a.options.align == Align::left     ? HAlign::left
+                             : a.options.align == Align::center ? HAlign::center
+                                                                : HAlign::right;
+        font.draw(image, a.markup, a.options.size * m.font, p.x, p.y, align, VAlign::digits_middle,
+                  a.options.color);
     }
     draw_legend_text(font, image);
     draw_colorbar_text(font, image);
@@ -348,9 +371,11 @@ void Axes::draw_legend_text(Font& font, Image& image) const {
     const Metrics m{r_.font};
     const Rect& box = r_.legend_box;
     for (std::size_t k = 0; k < r_.legend_entries.size(); ++k) {
-        const double y = snap(box.y0 + m.legend_pad() + (k + 0.5) * m.legend_row() - 0.15 * m.legend_size(), 1.0);
+        const double y = snap(
+            box.y0 + m.legend_pad() + (k + 0.5) * m.legend_row() - 0.15 * m.legend_size(), 1.0);
         const double x = box.x0 + m.legend_pad() + m.legend_sample() + 0.6 * m.font;
-        font.draw(image, r_.legend_entries[k]->label, m.legend_size(), x, y, HAlign::left, VAlign::digits_middle, black);
+        font.draw(image, r_.legend_entries[k]->label, m.legend_size(), x, y, HAlign::left,
+                  VAlign::digits_middle, black);
     }
 }
 
@@ -367,11 +392,12 @@ void Axes::draw_colorbar_text(Font& font, Image& image) const {
                   VAlign::digits_middle, black);
     }
     if (!r_.c_ticks.multiplier.empty())
-        font.draw(image, r_.c_ticks.multiplier, m.tick_label_size(), bar.x0, bar.y0 - 0.4 * m.font, HAlign::left,
-                  VAlign::bottom, black);
+        font.draw(image, r_.c_ticks.multiplier, m.tick_label_size(), bar.x0, bar.y0 - 0.4 * m.font,
+                  HAlign::left, VAlign::bottom, black);
     if (!c.label.empty()) {
         const double left = bar.x1 + m.tick_label_pad() + r_.c_label_width + m.axis_label_pad();
-        font.draw(image, c.label, m.axis_label_size(), left + font.measure_line(c.label, m.axis_label_size()).ascent,
+        font.draw(image, c.label, m.axis_label_size(),
+                  left + font.measure_line(c.label, m.axis_label_size()).ascent,
                   (bar.y0 + bar.y1) / 2, HAlign::center, VAlign::baseline, black, true);
     }
 }

@@ -10,6 +10,8 @@ namespace {
 
 /// matplotlib's viridis, 256 entries (van der Walt & Smith 2015), copied from the table
 /// published in matplotlib's `_cm_listed.py` (CC0).
+// (one colour per line, as published)
+// clang-format off
 constexpr std::array<std::array<float, 3>, 256> viridis_table{{
     {0.267004f, 0.004874f, 0.329415f},
     {0.268510f, 0.009605f, 0.335427f},
@@ -268,6 +270,7 @@ constexpr std::array<std::array<float, 3>, 256> viridis_table{{
     {0.983868f, 0.904867f, 0.136897f},
     {0.993248f, 0.906157f, 0.143936f},
 }};
+// clang-format on
 
 /// A colour map given by control points, interpolated linearly between them.
 struct ControlPoint {
@@ -277,6 +280,7 @@ struct ControlPoint {
 
 /// SPLASH colour scheme 2, "red" (IDL red-temperature), from SPLASH's colours.f90:
 /// luminance 0, 0.475, 0.694, 0.745, 1.
+// clang-format off
 constexpr std::array<ControlPoint, 5> splash_red{{
     {0.000, {0.000, 0.000, 0.000}},
     {0.475, {0.686, 0.004, 0.000}},
@@ -284,6 +288,7 @@ constexpr std::array<ControlPoint, 5> splash_red{{
     {0.745, {1.000, 0.518, 0.000}},
     {1.000, {1.000, 1.000, 1.000}},
 }};
+// clang-format on
 
 Color lerp(const Color& a, const Color& b, double s) {
     return {a.r + s * (b.r - a.r), a.g + s * (b.g - a.g), a.b + s * (b.b - a.b)};
@@ -320,18 +325,24 @@ Color map_color(Colormap map, double t) {
     // Clamp, and send NaN to the low end rather than to undefined behaviour.
     t = std::isnan(t) ? 0.0 : std::clamp(t, 0.0, 1.0);
     switch (map) {
-        case Colormap::viridis: return interpolate_viridis(t);
-        case Colormap::red: return interpolate_control_points(splash_red, t);
-        case Colormap::grey: return {t, t, t};
+        case Colormap::viridis:
+            return interpolate_viridis(t);
+        case Colormap::red:
+            return interpolate_control_points(splash_red, t);
+        case Colormap::grey:
+            return {t, t, t};
     }
     return black;
 }
 
 std::string_view colormap_name(Colormap map) {
     switch (map) {
-        case Colormap::viridis: return "viridis";
-        case Colormap::red: return "red";
-        case Colormap::grey: return "grey";
+        case Colormap::viridis:
+            return "viridis";
+        case Colormap::red:
+            return "red";
+        case Colormap::grey:
+            return "grey";
     }
     return "?";
 }

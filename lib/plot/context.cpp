@@ -30,7 +30,8 @@ uniform vec2 viewport;
 out vec4 v_color;
 out vec2 v_texcoord;
 void main() {
-    gl_Position = vec4(2.0 * position.x / viewport.x - 1.0, 1.0 - 2.0 * position.y / viewport.y, 0.0, 1.0);
+    gl_Position = vec4(2.0 * position.x / viewport.x - 1.0, 1.0 - 2.0 * position.y / viewport.y,
+                       0.0, 1.0);
     v_color = color;
     v_texcoord = texcoord;
 }
@@ -121,13 +122,20 @@ GLuint link_program(const char* fragment_source) {
 
 int marker_code(Marker m) {
     switch (m) {
-        case Marker::none: return 0;
-        case Marker::circle: return 1;
-        case Marker::square: return 2;
-        case Marker::triangle: return 3;
-        case Marker::diamond: return 4;
-        case Marker::plus: return 5;
-        case Marker::cross: return 6;
+        case Marker::none:
+            return 0;
+        case Marker::circle:
+            return 1;
+        case Marker::square:
+            return 2;
+        case Marker::triangle:
+            return 3;
+        case Marker::diamond:
+            return 4;
+        case Marker::plus:
+            return 5;
+        case Marker::cross:
+            return 6;
     }
     return 1;
 }
@@ -143,10 +151,12 @@ struct Canvas::Impl {
 // ---- Set-up ---------------------------------------------------------------------------------
 Canvas::Canvas(int width, int height, int supersample, const Color& background)
     : impl_(std::make_unique<Impl>()), width_(width), height_(height), supersample_(supersample) {
-    const long w = static_cast<long>(width) * supersample, h = static_cast<long>(height) * supersample;
+    const long w = static_cast<long>(width) * supersample,
+               h = static_cast<long>(height) * supersample;
     if (width <= 0 || height <= 0 || supersample <= 0 || w > max_buffer_side || h > max_buffer_side)
         throw Error("OSMesa: cannot create a " + std::to_string(w) + "×" + std::to_string(h) +
-                    " pixel GL buffer (the limit is " + std::to_string(max_buffer_side) + " a side)");
+                    " pixel GL buffer (the limit is " + std::to_string(max_buffer_side) +
+                    " a side)");
 
     impl_->context = OSMesaCreateContextExt(OSMESA_RGBA, 0, 0, 0, nullptr);
     if (impl_->context == nullptr) throw Error("OSMesa: no off-screen GL context could be created");
@@ -159,7 +169,8 @@ Canvas::Canvas(int width, int height, int supersample, const Color& background)
     }
     if (glGetString(GL_VERSION) == nullptr) {
         OSMesaDestroyContext(impl_->context);
-        throw Error("no GL context: glGetString returned NULL (is libGL linked instead of OSMesa?)");
+        throw Error(
+            "no GL context: glGetString returned NULL (is libGL linked instead of OSMesa?)");
     }
 
     impl_->flat = link_program(flat_fragment_source);
@@ -194,7 +205,8 @@ Canvas::~Canvas() {
 void Canvas::clip(const Rect& r) {
     // Scissor boxes are in buffer pixels, bottom-up; round outwards to whole final pixels.
     const int s = supersample_;
-    const int x0 = static_cast<int>(std::floor(r.x0)) * s, x1 = static_cast<int>(std::ceil(r.x1)) * s;
+    const int x0 = static_cast<int>(std::floor(r.x0)) * s,
+              x1 = static_cast<int>(std::ceil(r.x1)) * s;
     const int y0 = (height_ - static_cast<int>(std::ceil(r.y1))) * s;
     const int y1 = (height_ - static_cast<int>(std::floor(r.y0))) * s;
     glEnable(GL_SCISSOR_TEST);
@@ -255,13 +267,15 @@ void Canvas::markers(std::span<const float> xy, double size, Marker shape, doubl
     const bool bar = shape == Marker::plus || shape == Marker::cross;
     const double stroke = bar ? std::max(outline, std::max(1.0, 0.15 * size)) : outline;
     glUniform1i(glGetUniformLocation(impl_->marker, "shape"), marker_code(shape));
-    glUniform1f(glGetUniformLocation(impl_->marker, "ring"), static_cast<float>(2.0 * stroke / size));
+    glUniform1f(glGetUniformLocation(impl_->marker, "ring"),
+                static_cast<float>(2.0 * stroke / size));
     glPointSize(static_cast<float>(sprite));
     glDrawArrays(GL_POINTS, 0, static_cast<GLsizei>(xy.size() / 2));
     glDisableVertexAttribArray(color_location);
 }
 
-void Canvas::texture(std::span<const std::uint8_t> rgba, int tex_width, int tex_height, const Rect& where) {
+void Canvas::texture(std::span<const std::uint8_t> rgba, int tex_width, int tex_height,
+                     const Rect& where) {
     GLuint name = 0;
     glGenTextures(1, &name);
     glBindTexture(GL_TEXTURE_2D, name);
@@ -269,7 +283,8 @@ void Canvas::texture(std::span<const std::uint8_t> rgba, int tex_width, int tex_
     glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_MAG_FILTER, GL_NEAREST);
     glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_WRAP_S, GL_CLAMP_TO_EDGE);
     glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_WRAP_T, GL_CLAMP_TO_EDGE);
-    glTexImage2D(GL_TEXTURE_2D, 0, GL_RGBA8, tex_width, tex_height, 0, GL_RGBA, GL_UNSIGNED_BYTE, rgba.data());
+    glTexImage2D(GL_TEXTURE_2D, 0, GL_RGBA8, tex_width, tex_height, 0, GL_RGBA, GL_UNSIGNED_BYTE,
+                 rgba.data());
 
     glUseProgram(impl_->textured);
     glUniform1i(glGetUniformLocation(impl_->textured, "image"), 0);
@@ -302,7 +317,9 @@ Image Canvas::resolve() {
         for (int x = 0; x < width_; ++x) {
             unsigned sum[3] = {0, 0, 0};
             for (int dy = 0; dy < s; ++dy) {
-                const std::uint8_t* p = &impl_->buffer[((first_row + dy) * buffer_width + static_cast<std::size_t>(x) * s) * 4];
+                const std::uint8_t* p = &impl_->buffer[((first_row + dy) * buffer_width +
+                                                        static_cast<std::size_t>(x) * s) *
+                                                       4];
                 for (int dx = 0; dx < s; ++dx, p += 4) {
                     sum[0] += p[0];
                     sum[1] += p[1];
@@ -310,7 +327,8 @@ Image Canvas::resolve() {
                 }
             }
             std::uint8_t* out = &image.rgb[(static_cast<std::size_t>(y) * width_ + x) * 3];
-            for (int c = 0; c < 3; ++c) out[c] = static_cast<std::uint8_t>((sum[c] + samples / 2) / samples);
+            for (int c = 0; c < 3; ++c)
+                out[c] = static_cast<std::uint8_t>((sum[c] + samples / 2) / samples);
         }
     }
     return image;

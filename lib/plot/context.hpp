@@ -43,11 +43,11 @@ class Canvas {
     /// shapes with that line width (pixels); plus and cross are strokes of at least
     /// max(1, 0.15 size) pixels.
     void markers(std::span<const float> xy, double size, Marker shape, double outline,
-                 const Color& color, double alpha = 1.0,
-                 std::span<const std::uint8_t> rgba = {});
+                 const Color& color, double alpha = 1.0, std::span<const std::uint8_t> rgba = {});
     /// An RGBA8 texture of \p tex_width × \p tex_height texels (row 0 at the bottom) stretched
     /// over \p where, sampled nearest (cells stay sharp).
-    void texture(std::span<const std::uint8_t> rgba, int tex_width, int tex_height, const Rect& where);
+    void texture(std::span<const std::uint8_t> rgba, int tex_width, int tex_height,
+                 const Rect& where);
 
     /// Finishes rendering and returns the box-filtered final image.
     Image resolve();

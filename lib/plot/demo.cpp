@@ -18,7 +18,8 @@ int main(int argc, char** argv) {
         const auto start = std::chrono::steady_clock::now();
         plot::Figure fig = plot::demo::make_figure();
         fig.save_png(argv[1]);
-        const double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+        const double seconds =
+            std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
         std::printf("wrote %s (%d×%d px) in %.2f s\n", argv[1], fig.width(), fig.height(), seconds);
     } catch (const std::exception& e) {
         std::fprintf(stderr, "%s\n", e.what());

@@ -45,7 +45,11 @@ inline double damped_wave(double x) { return std::exp(-0.25 * x) * std::sin(2.0 
 inline Figure make_figure(int width = 2100, int height = 640) {
     Figure fig(1, 3, {.width = width, .height = height});
     fig.title("Figure engine demonstration");
-    fig.stamp({.scheme = "demo data", .kernel = "M4", .neighbours = 5, .particles = 400, .run_time = 0.12});
+    fig.stamp({.scheme = "demo data",
+               .kernel = "M4",
+               .neighbours = 5,
+               .particles = 400,
+               .run_time = 0.12});
 
     // (a) A particle scatter of a noisy sampled function, with the exact curve.
     {
@@ -83,10 +87,21 @@ inline Figure make_figure(int width = 2100, int height = 640) {
         }
         Axes& b = fig.panel(1);
         b.xscale(Scale::log).yscale(Scale::log).xlabel("t_{run} [s]").ylabel("L_1 error in \\rho");
-        b.line(t1, e1, {.label = "Monaghan & Gingold AV", .color = blue, .width = 1.5, .marker = Marker::circle});
-        b.line(t2, e2, {.label = "Selhammar (1997)", .color = red, .style = Dash::dashed, .width = 1.5,
-                        .marker = Marker::square, .marker_filled = false});
-        b.line(tr, er, {.label = "\\propto t_{run}^{-1}", .color = grey, .style = Dash::dotted, .width = 1.3});
+        b.line(t1, e1,
+               {.label = "Monaghan & Gingold AV",
+                .color = blue,
+                .width = 1.5,
+                .marker = Marker::circle});
+        b.line(t2, e2,
+               {.label = "Selhammar (1997)",
+                .color = red,
+                .style = Dash::dashed,
+                .width = 1.5,
+                .marker = Marker::square,
+                .marker_filled = false});
+        b.line(
+            tr, er,
+            {.label = "\\propto t_{run}^{-1}", .color = grey, .style = Dash::dotted, .width = 1.3});
         b.legend(Corner::upper_right);
     }
 
@@ -97,14 +112,16 @@ inline Figure make_figure(int width = 2100, int height = 640) {
         for (int i = 0; i < nx; ++i) {
             for (int j = 0; j < ny; ++j) {
                 const double x = -1 + 2 * (i + 0.5) / nx, y = -1 + 2 * (j + 0.5) / ny;
-                rho(i, j) = 0.2 + std::exp(-((x - 0.35) * (x - 0.35) + (y - 0.2) * (y - 0.2)) / 0.05) +
-                            0.6 * std::exp(-((x + 0.4) * (x + 0.4) + (y + 0.35) * (y + 0.35)) / 0.02) +
-                            0.1 * std::sin(6 * x) * std::cos(4 * y);
+                rho(i, j) =
+                    0.2 + std::exp(-((x - 0.35) * (x - 0.35) + (y - 0.2) * (y - 0.2)) / 0.05) +
+                    0.6 * std::exp(-((x + 0.4) * (x + 0.4) + (y + 0.35) * (y + 0.35)) / 0.02) +
+                    0.1 * std::sin(6 * x) * std::cos(4 * y);
             }
         }
         Axes& c = fig.panel(2);
         c.xlabel("x [length]").ylabel("y [length]").equal_aspect();
-        c.image(rho, {-1, 1, -1, 1}, {.map = Colormap::viridis, .colorbar_label = "\\rho [mass length^{-2}]"});
+        c.image(rho, {-1, 1, -1, 1},
+                {.map = Colormap::viridis, .colorbar_label = "\\rho [mass length^{-2}]"});
         c.text(-0.9, 0.85, "t = 0.2", {.color = white});
     }
     return fig;

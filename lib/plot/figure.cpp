@@ -30,8 +30,10 @@ void require(bool ok, const std::string& message) {
 
 std::string panel_letter(std::size_t index) {
     std::string letter = "(";
-    if (index < 26) letter += static_cast<char>('a' + index);
-    else letter += std::to_string(index + 1);
+    if (index < 26)
+        letter += static_cast<char>('a' + index);
+    else
+        letter += std::to_string(index + 1);
     letter += ')';
     return letter;
 }
@@ -73,14 +75,17 @@ std::string format_stamp(const Stamp& s) {
 }
 
 // ---- Construction -------------------------------------------------------------------------------
-Figure::Figure(int rows, int cols, const FigureOptions& options) : rows_(rows), cols_(cols), options_(options) {
+Figure::Figure(int rows, int cols, const FigureOptions& options)
+    : rows_(rows), cols_(cols), options_(options) {
     require(rows >= 1 && rows <= 16 && cols >= 1 && cols <= 16,
-            "a figure of " + std::to_string(rows) + "×" + std::to_string(cols) + " panels (rows and columns must lie in 1..16)");
+            "a figure of " + std::to_string(rows) + "×" + std::to_string(cols) +
+                " panels (rows and columns must lie in 1..16)");
     if (options_.width == 0) options_.width = 800 * cols;
     if (options_.height == 0) options_.height = 600 * rows;
-    require(options_.width >= 64 && options_.width <= 10000 && options_.height >= 64 && options_.height <= 10000,
-            "figure size " + std::to_string(options_.width) + "×" + std::to_string(options_.height) +
-                " px is outside 64..10000 px a side");
+    require(options_.width >= 64 && options_.width <= 10000 && options_.height >= 64 &&
+                options_.height <= 10000,
+            "figure size " + std::to_string(options_.width) + "×" +
+                std::to_string(options_.height) + " px is outside 64..10000 px a side");
     require(options_.font_size >= 4 && options_.font_size <= 200,
             "font size " + std::to_string(options_.font_size) + " px is outside 4..200");
     require(options_.supersample >= 1 && options_.supersample <= 4,
@@ -88,7 +93,8 @@ Figure::Figure(int rows, int cols, const FigureOptions& options) : rows_(rows), 
     if (options_.font.empty()) options_.font = default_font();
     for (int i = 0; i < rows * cols; ++i) {
         const auto index = static_cast<std::size_t>(i);
-        panels_.push_back(std::unique_ptr<Axes>(new Axes(index, options_.panel_letters ? panel_letter(index) : "")));
+        panels_.push_back(std::unique_ptr<Axes>(
+            new Axes(index, options_.panel_letters ? panel_letter(index) : "")));
     }
 }
 
@@ -110,14 +116,15 @@ Figure& Figure::stamp(std::string markup) {
 
 Axes& Figure::panel(int row, int col) {
     require(row >= 0 && row < rows_ && col >= 0 && col < cols_,
-            "no panel (" + std::to_string(row) + ", " + std::to_string(col) + ") in a " + std::to_string(rows_) + "×" +
-                std::to_string(cols_) + " figure");
+            "no panel (" + std::to_string(row) + ", " + std::to_string(col) + ") in a " +
+                std::to_string(rows_) + "×" + std::to_string(cols_) + " figure");
     return *panels_[static_cast<std::size_t>(row * cols_ + col)];
 }
 
 Axes& Figure::panel(int index) {
-    require(index >= 0 && index < rows_ * cols_,
-            "no panel " + std::to_string(index) + " in a figure of " + std::to_string(rows_ * cols_));
+    require(
+        index >= 0 && index < rows_ * cols_,
+        "no panel " + std::to_string(index) + " in a figure of " + std::to_string(rows_ * cols_));
     return *panels_[static_cast<std::size_t>(index)];
 }
 
@@ -128,11 +135,19 @@ Image Figure::render() {
     Font font(options_.font);
 
     // Bands for the title and the stamp; the panels share the rest in a regular grid.
-    const double top = title_.empty() ? 0.0 : m.outer_pad() + font.measure_line(title_, m.title_size()).height() + 0.2 * m.font;
-    const double bottom = stamp_.empty() ? 0.0 : font.measure_line(stamp_, m.stamp_size()).height() + m.outer_pad();
+    const double top =
+        title_.empty()
+            ? 0.0
+            : m.outer_pad() + font.measure_line(title_, m.title_size()).height() + 0.2 * m.font;
+    const double bottom =
+        stamp_.empty() ? 0.0 : font.measure_line(stamp_, m.stamp_size()).height() + m.outer_pad();
     const double cell_w = W / cols_, cell_h = (H - top - bottom) / rows_;
-    auto cell = [&](int r, int c) { return Rect{c * cell_w, top + r * cell_h, (c + 1) * cell_w, top + (r + 1) * cell_h}; };
-    auto inset = [](const Rect& c, double l, double t, double r, double b) { return Rect{c.x0 + l, c.y0 + t, c.x1 - r, c.y1 - b}; };
+    auto cell = [&](int r, int c) {
+        return Rect{c * cell_w, top + r * cell_h, (c + 1) * cell_w, top + (r + 1) * cell_h};
+    };
+    auto inset = [](const Rect& c, double l, double t, double r, double b) {
+        return Rect{c.x0 + l, c.y0 + t, c.x1 - r, c.y1 - b};
+    };
 
     // Measure every panel twice (the second time for a frame of about its final size), then
     // align: one left/right margin per column, one top/bottom margin per row.
@@ -141,8 +156,11 @@ Image Figure::render() {
         for (int c = 0; c < cols_; ++c) {
             Axes& ax = *panels_[static_cast<std::size_t>(r * cols_ + c)];
             const Rect k = cell(r, c);
-            auto guess = ax.measure(font, m.font, k, inset(k, 0.15 * cell_w, 0.1 * cell_h, 0.05 * cell_w, 0.15 * cell_h));
-            guess = ax.measure(font, m.font, k, inset(k, guess.left, guess.top, guess.right, guess.bottom));
+            auto guess =
+                ax.measure(font, m.font, k,
+                           inset(k, 0.15 * cell_w, 0.1 * cell_h, 0.05 * cell_w, 0.15 * cell_h));
+            guess = ax.measure(font, m.font, k,
+                               inset(k, guess.left, guess.top, guess.right, guess.bottom));
             left[c] = std::max(left[c], guess.left);
             right[c] = std::max(right[c], guess.right);
             upper[r] = std::max(upper[r], guess.top);
@@ -151,23 +169,27 @@ Image Figure::render() {
     }
     for (int r = 0; r < rows_; ++r)
         for (int c = 0; c < cols_; ++c)
-            panels_[static_cast<std::size_t>(r * cols_ + c)]->place(font, inset(cell(r, c), left[c], upper[r], right[c], lower[r]));
+            panels_[static_cast<std::size_t>(r * cols_ + c)]->place(
+                font, inset(cell(r, c), left[c], upper[r], right[c], lower[r]));
 
     // GL: data, frames, colour bars, legend boxes.
-    detail::Canvas canvas(options_.width, options_.height,
-                          affordable_supersample(options_.width, options_.height, options_.supersample), options_.background);
+    detail::Canvas canvas(
+        options_.width, options_.height,
+        affordable_supersample(options_.width, options_.height, options_.supersample),
+        options_.background);
     for (const auto& ax : panels_) ax->draw(canvas);
     Image image = canvas.resolve();
 
     // Text at the final resolution.
     for (const auto& ax : panels_) ax->draw_text(font, image);
     if (!title_.empty())
-        font.draw(image, title_, m.title_size(), W / 2, m.outer_pad() + font.measure_line(title_, m.title_size()).ascent,
-                  HAlign::center, VAlign::baseline, black);
+        font.draw(image, title_, m.title_size(), W / 2,
+                  m.outer_pad() + font.measure_line(title_, m.title_size()).ascent, HAlign::center,
+                  VAlign::baseline, black);
     if (!stamp_.empty())
         font.draw(image, stamp_, m.stamp_size(), m.outer_pad(),
-                  H - 0.5 * m.outer_pad() - font.measure_line(stamp_, m.stamp_size()).descent, HAlign::left,
-                  VAlign::baseline, Color{0.45, 0.45, 0.45});
+                  H - 0.5 * m.outer_pad() - font.measure_line(stamp_, m.stamp_size()).descent,
+                  HAlign::left, VAlign::baseline, Color{0.45, 0.45, 0.45});
     return image;
 }
 

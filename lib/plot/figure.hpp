@@ -36,11 +36,11 @@ namespace plot {
 
 /// Size and look of a figure.
 struct FigureOptions {
-    int width = 0;            ///< final image width in pixels; 0: 800 per column
-    int height = 0;           ///< final image height in pixels; 0: 600 per row
-    double font_size = 16.0;  ///< tick-label font size in pixels; everything else scales with it
-    int supersample = 3;      ///< GL renders at this multiple (1..4), then box-filters
-    bool panel_letters = true;///< label the panels (a), (b), … in reading order
+    int width = 0;              ///< final image width in pixels; 0: 800 per column
+    int height = 0;             ///< final image height in pixels; 0: 600 per row
+    double font_size = 16.0;    ///< tick-label font size in pixels; everything else scales with it
+    int supersample = 3;        ///< GL renders at this multiple (1..4), then box-filters
+    bool panel_letters = true;  ///< label the panels (a), (b), … in reading order
     std::string font{};         ///< TrueType font file; empty: DejaVu Sans (SPH_DEJAVU_FONT)
     Color background = white;
 };
@@ -48,12 +48,12 @@ struct FigureOptions {
 /// What produced the figure, for the stamp line at its foot.  Empty or negative fields are
 /// left out.
 struct Stamp {
-    std::string scheme{};       ///< e.g. "Monaghan-Gingold AV"
-    std::string kernel{};       ///< e.g. "M4"
-    double neighbours = -1;   ///< the neighbour number N_{ngb}
-    long long particles = -1; ///< N
-    double run_time = -1;     ///< wall-clock seconds
-    std::string extra{};        ///< anything else, appended as is (markup)
+    std::string scheme{};      ///< e.g. "Monaghan-Gingold AV"
+    std::string kernel{};      ///< e.g. "M4"
+    double neighbours = -1;    ///< the neighbour number N_{ngb}
+    long long particles = -1;  ///< N
+    double run_time = -1;      ///< wall-clock seconds
+    std::string extra{};       ///< anything else, appended as is (markup)
 };
 
 /// The font file used when FigureOptions::font is empty: DejaVu Sans, as configured by the
@@ -73,8 +73,8 @@ class Figure {
     Figure(Figure&&) noexcept;
     Figure& operator=(Figure&&) noexcept;
 
-    Figure& title(std::string markup);       ///< centred at the top
-    Figure& stamp(std::string markup);       ///< small grey line at the bottom
+    Figure& title(std::string markup);  ///< centred at the top
+    Figure& stamp(std::string markup);  ///< small grey line at the bottom
     Figure& stamp(const Stamp& stamp) { return this->stamp(format_stamp(stamp)); }
 
     /// The panel in row \p row, column \p col (from the top left); throws if out of range.

@@ -23,41 +23,91 @@ struct Symbol {
 // Greek letters follow TeX: \epsilon and \phi are the lunate and the closed forms,
 // \varepsilon and \varphi the open ones.
 constexpr std::array symbols{
-    Symbol{"alpha", "α"},       Symbol{"beta", "β"},        Symbol{"gamma", "γ"},
-    Symbol{"delta", "δ"},       Symbol{"epsilon", "ϵ"},     Symbol{"varepsilon", "ε"},
-    Symbol{"zeta", "ζ"},        Symbol{"eta", "η"},         Symbol{"theta", "θ"},
-    Symbol{"vartheta", "ϑ"},    Symbol{"iota", "ι"},        Symbol{"kappa", "κ"},
-    Symbol{"lambda", "λ"},      Symbol{"mu", "μ"},          Symbol{"nu", "ν"},
-    Symbol{"xi", "ξ"},          Symbol{"pi", "π"},          Symbol{"varpi", "ϖ"},
-    Symbol{"rho", "ρ"},         Symbol{"varrho", "ϱ"},      Symbol{"sigma", "σ"},
-    Symbol{"varsigma", "ς"},    Symbol{"tau", "τ"},         Symbol{"upsilon", "υ"},
-    Symbol{"phi", "ϕ"},         Symbol{"varphi", "φ"},      Symbol{"chi", "χ"},
-    Symbol{"psi", "ψ"},         Symbol{"omega", "ω"},       Symbol{"Gamma", "Γ"},
-    Symbol{"Delta", "Δ"},       Symbol{"Theta", "Θ"},       Symbol{"Lambda", "Λ"},
-    Symbol{"Xi", "Ξ"},          Symbol{"Pi", "Π"},          Symbol{"Sigma", "Σ"},
-    Symbol{"Upsilon", "Υ"},     Symbol{"Phi", "Φ"},         Symbol{"Psi", "Ψ"},
+    Symbol{"alpha", "α"},
+    Symbol{"beta", "β"},
+    Symbol{"gamma", "γ"},
+    Symbol{"delta", "δ"},
+    Symbol{"epsilon", "ϵ"},
+    Symbol{"varepsilon", "ε"},
+    Symbol{"zeta", "ζ"},
+    Symbol{"eta", "η"},
+    Symbol{"theta", "θ"},
+    Symbol{"vartheta", "ϑ"},
+    Symbol{"iota", "ι"},
+    Symbol{"kappa", "κ"},
+    Symbol{"lambda", "λ"},
+    Symbol{"mu", "μ"},
+    Symbol{"nu", "ν"},
+    Symbol{"xi", "ξ"},
+    Symbol{"pi", "π"},
+    Symbol{"varpi", "ϖ"},
+    Symbol{"rho", "ρ"},
+    Symbol{"varrho", "ϱ"},
+    Symbol{"sigma", "σ"},
+    Symbol{"varsigma", "ς"},
+    Symbol{"tau", "τ"},
+    Symbol{"upsilon", "υ"},
+    Symbol{"phi", "ϕ"},
+    Symbol{"varphi", "φ"},
+    Symbol{"chi", "χ"},
+    Symbol{"psi", "ψ"},
+    Symbol{"omega", "ω"},
+    Symbol{"Gamma", "Γ"},
+    Symbol{"Delta", "Δ"},
+    Symbol{"Theta", "Θ"},
+    Symbol{"Lambda", "Λ"},
+    Symbol{"Xi", "Ξ"},
+    Symbol{"Pi", "Π"},
+    Symbol{"Sigma", "Σ"},
+    Symbol{"Upsilon", "Υ"},
+    Symbol{"Phi", "Φ"},
+    Symbol{"Psi", "Ψ"},
     Symbol{"Omega", "Ω"},
     // Symbols set as letters.
-    Symbol{"nabla", "∇"},       Symbol{"partial", "∂"},     Symbol{"infty", "∞"},
-    Symbol{"langle", "⟨"},      Symbol{"rangle", "⟩"},      Symbol{"odot", "⊙"},
-    Symbol{"prime", "′"},       Symbol{"ell", "ℓ"},         Symbol{"hbar", "ℏ"},
-    Symbol{"degree", "°"},      Symbol{"circ", "∘"},        Symbol{"sqrt", "√"},
-    Symbol{"sum", "∑"},         Symbol{"int", "∫"},         Symbol{"AA", "Å"},
-    Symbol{"ldots", "…"},       Symbol{"dots", "…"},        Symbol{"cdots", "⋯"},
-    Symbol{"perp", "⊥"},        Symbol{"parallel", "∥"},    Symbol{"dagger", "†"},
-    Symbol{"uparrow", "↑"},     Symbol{"downarrow", "↓"},
+    Symbol{"nabla", "∇"},
+    Symbol{"partial", "∂"},
+    Symbol{"infty", "∞"},
+    Symbol{"langle", "⟨"},
+    Symbol{"rangle", "⟩"},
+    Symbol{"odot", "⊙"},
+    Symbol{"prime", "′"},
+    Symbol{"ell", "ℓ"},
+    Symbol{"hbar", "ℏ"},
+    Symbol{"degree", "°"},
+    Symbol{"circ", "∘"},
+    Symbol{"sqrt", "√"},
+    Symbol{"sum", "∑"},
+    Symbol{"int", "∫"},
+    Symbol{"AA", "Å"},
+    Symbol{"ldots", "…"},
+    Symbol{"dots", "…"},
+    Symbol{"cdots", "⋯"},
+    Symbol{"perp", "⊥"},
+    Symbol{"parallel", "∥"},
+    Symbol{"dagger", "†"},
+    Symbol{"uparrow", "↑"},
+    Symbol{"downarrow", "↓"},
     // Binary operators.
-    Symbol{"times", "×", Spacing::binary},  Symbol{"cdot", "⋅", Spacing::binary},
-    Symbol{"pm", "±", Spacing::binary},     Symbol{"mp", "∓", Spacing::binary},
+    Symbol{"times", "×", Spacing::binary},
+    Symbol{"cdot", "⋅", Spacing::binary},
+    Symbol{"pm", "±", Spacing::binary},
+    Symbol{"mp", "∓", Spacing::binary},
     Symbol{"div", "÷", Spacing::binary},
     // Relations.
-    Symbol{"le", "≤", Spacing::relation},      Symbol{"leq", "≤", Spacing::relation},
-    Symbol{"ge", "≥", Spacing::relation},      Symbol{"geq", "≥", Spacing::relation},
-    Symbol{"ne", "≠", Spacing::relation},      Symbol{"neq", "≠", Spacing::relation},
-    Symbol{"approx", "≈", Spacing::relation},  Symbol{"sim", "∼", Spacing::relation},
-    Symbol{"simeq", "≃", Spacing::relation},   Symbol{"propto", "∝", Spacing::relation},
-    Symbol{"equiv", "≡", Spacing::relation},   Symbol{"ll", "≪", Spacing::relation},
-    Symbol{"gg", "≫", Spacing::relation},      Symbol{"to", "→", Spacing::relation},
+    Symbol{"le", "≤", Spacing::relation},
+    Symbol{"leq", "≤", Spacing::relation},
+    Symbol{"ge", "≥", Spacing::relation},
+    Symbol{"geq", "≥", Spacing::relation},
+    Symbol{"ne", "≠", Spacing::relation},
+    Symbol{"neq", "≠", Spacing::relation},
+    Symbol{"approx", "≈", Spacing::relation},
+    Symbol{"sim", "∼", Spacing::relation},
+    Symbol{"simeq", "≃", Spacing::relation},
+    Symbol{"propto", "∝", Spacing::relation},
+    Symbol{"equiv", "≡", Spacing::relation},
+    Symbol{"ll", "≪", Spacing::relation},
+    Symbol{"gg", "≫", Spacing::relation},
+    Symbol{"to", "→", Spacing::relation},
     Symbol{"rightarrow", "→", Spacing::relation},
     Symbol{"leftarrow", "←", Spacing::relation},
     Symbol{"Rightarrow", "⇒", Spacing::relation},
@@ -93,11 +143,11 @@ class Parser {
     std::string_view source_;
     std::size_t pos_ = 0;
     std::vector<TextRun> runs_;
-    char previous_ = '\0';     ///< last character emitted in the current group ('\0' at start)
-    bool skip_spaces_ = false; ///< set after an operator: its own spacing replaces typed spaces
+    char previous_ = '\0';      ///< last character emitted in the current group ('\0' at start)
+    bool skip_spaces_ = false;  ///< set after an operator: its own spacing replaces typed spaces
     // The script just parsed, so that a script of the other kind right after it can stack.
     std::size_t script_end_ = std::string_view::npos;  ///< position after it
-    std::size_t script_runs_ = 0;                       ///< runs it made
+    std::size_t script_runs_ = 0;                      ///< runs it made
     bool script_was_super_ = false;
     bool stack_next_ = false;  ///< the next emitted text starts a stacked run
 
@@ -175,13 +225,14 @@ class Parser {
     }
 
     void parse_script(const Level& parent, bool superscript) {
-        const Level level{parent.shift + parent.scale * (superscript ? superscript_shift
-                                                                     : subscript_shift),
-                          parent.scale * script_scale};
+        const Level level{
+            parent.shift + parent.scale * (superscript ? superscript_shift : subscript_shift),
+            parent.scale * script_scale};
         const char* name = superscript ? "'^'" : "'_'";
         if (at_end() || peek() == '}') fail(std::string(name) + " without an argument");
         // A superscript right after a one-run subscript (or the reverse) stacks over it.
-        stack_next_ = pos_ - 1 == script_end_ && script_runs_ == 1 && script_was_super_ != superscript;
+        stack_next_ =
+            pos_ - 1 == script_end_ && script_runs_ == 1 && script_was_super_ != superscript;
         const std::size_t runs_before = runs_.size();
         if (peek() == '{') {
             parse_group(level);
@@ -233,13 +284,25 @@ class Parser {
         const char c = peek();
         ++pos_;
         switch (c) {
-            case ',': emit(thin_space, level); return;
-            case ' ': emit(" ", level); return;
-            case '{': case '}': case '\\': case '_': case '^': case '%': case '$': case '#':
+            case ',':
+                emit(thin_space, level);
+                return;
+            case ' ':
+                emit(" ", level);
+                return;
+            case '{':
+            case '}':
+            case '\\':
+            case '_':
+            case '^':
+            case '%':
+            case '$':
+            case '#':
             case '&':
                 emit(std::string_view(&c, 1), level);
                 return;
-            default: fail(std::string("unknown command \\") + c);
+            default:
+                fail(std::string("unknown command \\") + c);
         }
     }
 
@@ -278,9 +341,12 @@ class Parser {
     std::string_view take_code_point() {
         const auto lead = static_cast<unsigned char>(peek());
         std::size_t length = 1;
-        if (lead >= 0xF0) length = 4;
-        else if (lead >= 0xE0) length = 3;
-        else if (lead >= 0xC0) length = 2;
+        if (lead >= 0xF0)
+            length = 4;
+        else if (lead >= 0xE0)
+            length = 3;
+        else if (lead >= 0xC0)
+            length = 2;
         length = std::min(length, source_.size() - pos_);
         const std::string_view cp = source_.substr(pos_, length);
         pos_ += length;

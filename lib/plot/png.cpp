@@ -29,9 +29,8 @@ Image::Image(int width_, int height_, std::array<std::uint8_t, 3> fill)
 
 std::array<std::uint8_t, 3> Image::at(int x, int y) const {
     if (x < 0 || y < 0 || x >= width || y >= height)
-        throw Error("pixel (" + std::to_string(x) + ", " + std::to_string(y) +
-                    ") is outside the " + std::to_string(width) + "×" + std::to_string(height) +
-                    " image");
+        throw Error("pixel (" + std::to_string(x) + ", " + std::to_string(y) + ") is outside the " +
+                    std::to_string(width) + "×" + std::to_string(height) + " image");
     const std::size_t i = (static_cast<std::size_t>(y) * width + x) * 3;
     return {rgb[i], rgb[i + 1], rgb[i + 2]};
 }
@@ -54,8 +53,8 @@ void on_png_warning(png_structp, png_const_charp) {}
 /// Encodes the rows to \p file.  Plain C style on purpose: nothing with a destructor lives in
 /// this frame, so libpng's longjmp on error is safe.  Returns false and fills \p sink on error.
 bool encode_png(std::FILE* file, int width, int height, png_bytep* rows, PngErrorSink* sink) {
-    png_structp png = png_create_write_struct(PNG_LIBPNG_VER_STRING, sink, on_png_error,
-                                              on_png_warning);
+    png_structp png =
+        png_create_write_struct(PNG_LIBPNG_VER_STRING, sink, on_png_error, on_png_warning);
     if (png == nullptr) {
         std::snprintf(sink->message, sizeof sink->message, "libpng could not start");
         return false;
@@ -86,8 +85,8 @@ std::filesystem::path directory_of(const std::string& path) {
 /// Opens a fresh temporary file next to \p path (same directory, so rename is atomic).
 std::pair<std::string, std::FILE*> open_temporary(const std::string& path) {
     for (int attempt = 0; attempt < 100; ++attempt) {
-        const std::string name = path + ".tmp" + std::to_string(::getpid()) + "_" +
-                                 std::to_string(attempt);
+        const std::string name =
+            path + ".tmp" + std::to_string(::getpid()) + "_" + std::to_string(attempt);
         const int fd = ::open(name.c_str(), O_WRONLY | O_CREAT | O_EXCL | O_CLOEXEC, 0666);
         if (fd >= 0) return {name, ::fdopen(fd, "wb")};
         if (errno != EEXIST)
@@ -120,7 +119,8 @@ void write_png(const Image& image, const std::string& path) {
 
     std::vector<png_bytep> rows(static_cast<std::size_t>(image.height));
     for (int y = 0; y < image.height; ++y)
-        rows[y] = const_cast<png_bytep>(image.rgb.data() + static_cast<std::size_t>(y) * image.width * 3);
+        rows[y] =
+            const_cast<png_bytep>(image.rgb.data() + static_cast<std::size_t>(y) * image.width * 3);
 
     auto [temporary, file] = open_temporary(path);
     if (file == nullptr) {
@@ -134,13 +134,14 @@ void write_png(const Image& image, const std::string& path) {
     const bool closed = std::fclose(file) == 0;
     if (!encoded || !flushed || !closed) {
         ::unlink(temporary.c_str());
-        throw Error("cannot write PNG '" + path + "': " +
-                    (encoded ? std::string(std::strerror(saved_errno)) : sink.message));
+        throw Error("cannot write PNG '" + path +
+                    "': " + (encoded ? std::string(std::strerror(saved_errno)) : sink.message));
     }
     if (std::rename(temporary.c_str(), path.c_str()) != 0) {
         const int rename_errno = errno;
         ::unlink(temporary.c_str());
-        throw Error("cannot write PNG '" + path + "': rename failed: " + std::strerror(rename_errno));
+        throw Error("cannot write PNG '" + path +
+                    "': rename failed: " + std::strerror(rename_errno));
     }
 }
 

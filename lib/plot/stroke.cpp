@@ -23,10 +23,14 @@ Pattern make_pattern(Dash dash, double w) {
     const double dash_on = 4.0 * w + 2.0, dash_off = 2.5 * w + 1.0;
     const double dot_step = 2.5 * w + 1.5;
     switch (dash) {
-        case Dash::solid: return {};
-        case Dash::dashed: return {{dash_on, dash_off}};
-        case Dash::dotted: return {{0.0, dot_step}};
-        case Dash::dashdot: return {{dash_on, dot_step * 0.8, 0.0, dot_step * 0.8}};
+        case Dash::solid:
+            return {};
+        case Dash::dashed:
+            return {{dash_on, dash_off}};
+        case Dash::dotted:
+            return {{0.0, dot_step}};
+        case Dash::dashdot:
+            return {{dash_on, dot_step * 0.8, 0.0, dot_step * 0.8}};
     }
     return {};
 }
@@ -42,15 +46,20 @@ void add_quad(StrokeGeometry& out, Point a, Point b, double h) {
     if (len <= 0.0) return;
     const double nx = -dy / len * h, ny = dx / len * h;
     auto& t = out.triangles;
-    push(t, a.x + nx, a.y + ny); push(t, b.x + nx, b.y + ny); push(t, b.x - nx, b.y - ny);
-    push(t, a.x + nx, a.y + ny); push(t, b.x - nx, b.y - ny); push(t, a.x - nx, a.y - ny);
+    push(t, a.x + nx, a.y + ny);
+    push(t, b.x + nx, b.y + ny);
+    push(t, b.x - nx, b.y - ny);
+    push(t, a.x + nx, a.y + ny);
+    push(t, b.x - nx, b.y - ny);
+    push(t, a.x - nx, a.y - ny);
 }
 
 /// A round join: a disc of radius \p h as a triangle fan.
 void add_disc(StrokeGeometry& out, Point c, double h) {
     constexpr int sides = 12;
     for (int k = 0; k < sides; ++k) {
-        const double a0 = 2 * std::numbers::pi * k / sides, a1 = 2 * std::numbers::pi * (k + 1) / sides;
+        const double a0 = 2 * std::numbers::pi * k / sides,
+                     a1 = 2 * std::numbers::pi * (k + 1) / sides;
         push(out.triangles, c.x, c.y);
         push(out.triangles, c.x + h * std::cos(a0), c.y + h * std::sin(a0));
         push(out.triangles, c.x + h * std::cos(a1), c.y + h * std::sin(a1));
@@ -141,7 +150,8 @@ void stroke_polyline(std::span<const Point> points, double width, Dash dash, con
             on_at_end = dash_segment(out, a, b, s0, s1, h, pattern, phase);
         }
         // Round join at b where the stroke continues through a turn.
-        if (visible && on_at_end && s1 >= 1.0 && i + 2 < points.size() && needs_join(a, b, points[i + 2]))
+        if (visible && on_at_end && s1 >= 1.0 && i + 2 < points.size() &&
+            needs_join(a, b, points[i + 2]))
             add_disc(out, b, h);
         if (!pattern.lengths.empty()) phase = std::fmod(phase + len, pattern.period());
     }

@@ -30,7 +30,8 @@ std::vector<char32_t> decode_utf8(std::string_view text) {
             continue;
         }
         char32_t cp = length == 1 ? lead : lead & (0xFF >> (length + 1));
-        for (int k = 1; k < length; ++k) cp = (cp << 6) | (static_cast<unsigned char>(text[i + k]) & 0x3F);
+        for (int k = 1; k < length; ++k)
+            cp = (cp << 6) | (static_cast<unsigned char>(text[i + k]) & 0x3F);
         out.push_back(cp);
         i += length;
     }
@@ -43,16 +44,26 @@ namespace {
 /// on the font having those glyphs.  Zero for anything else.
 double space_width_em(char32_t cp) {
     switch (cp) {
-        case 0x2002: return 0.5;
-        case 0x2003: return 1.0;
-        case 0x2004: return 1.0 / 3.0;
-        case 0x2005: return 0.25;
-        case 0x2006: return 1.0 / 6.0;
-        case 0x2007: return 0.636;
-        case 0x2008: return 0.318;
-        case 0x2009: return 0.2;
-        case 0x200A: return 0.1;
-        default: return 0.0;
+        case 0x2002:
+            return 0.5;
+        case 0x2003:
+            return 1.0;
+        case 0x2004:
+            return 1.0 / 3.0;
+        case 0x2005:
+            return 0.25;
+        case 0x2006:
+            return 1.0 / 6.0;
+        case 0x2007:
+            return 0.636;
+        case 0x2008:
+            return 0.318;
+        case 0x2009:
+            return 0.2;
+        case 0x200A:
+            return 0.1;
+        default:
+            return 0.0;
     }
 }
 
@@ -65,7 +76,8 @@ Font::Font(const std::string& path) : impl_(std::make_unique<Impl>()) {
     if (FT_Init_FreeType(&impl_->library) != 0) throw Error("FreeType could not start");
     if (FT_New_Face(impl_->library, path.c_str(), 0, &impl_->face) != 0) {
         FT_Done_FreeType(impl_->library);
-        throw Error("cannot load the font '" + path + "' (set SPH_DEJAVU_FONT or FigureOptions::font)");
+        throw Error("cannot load the font '" + path +
+                    "' (set SPH_DEJAVU_FONT or FigureOptions::font)");
     }
 }
 
@@ -172,11 +184,14 @@ std::vector<char32_t> Font::missing_glyphs(const std::vector<TextRun>& runs) {
     std::vector<char32_t> missing;
     for (const TextRun& run : runs)
         for (char32_t cp : decode_utf8(run.text))
-            if (space_width_em(cp) == 0.0 && FT_Get_Char_Index(impl_->face, cp) == 0) missing.push_back(cp);
+            if (space_width_em(cp) == 0.0 && FT_Get_Char_Index(impl_->face, cp) == 0)
+                missing.push_back(cp);
     return missing;
 }
 
-double Font::digit_height(double size) { return measure(std::vector<TextRun>{{"0", 0.0, 1.0}}, size).ascent; }
+double Font::digit_height(double size) {
+    return measure(std::vector<TextRun>{{"0", 0.0, 1.0}}, size).ascent;
+}
 
 namespace {
 
@@ -184,7 +199,8 @@ namespace {
 void blend(Image& image, int x, int y, unsigned coverage, const std::array<std::uint8_t, 3>& rgb) {
     if (coverage == 0 || x < 0 || y < 0 || x >= image.width || y >= image.height) return;
     std::uint8_t* p = &image.rgb[(static_cast<std::size_t>(y) * image.width + x) * 3];
-    for (int c = 0; c < 3; ++c) p[c] = static_cast<std::uint8_t>((p[c] * (255 - coverage) + rgb[c] * coverage + 127) / 255);
+    for (int c = 0; c < 3; ++c)
+        p[c] = static_cast<std::uint8_t>((p[c] * (255 - coverage) + rgb[c] * coverage + 127) / 255);
 }
 
 }  // namespace
@@ -196,14 +212,23 @@ void Font::draw(Image& image, const std::vector<TextRun>& runs, double size, dou
 
     // The anchor in the text's own frame: u along the text from the origin, v up from the
     // baseline.
-    const double u = halign == HAlign::left ? 0.0
-                   : halign == HAlign::center ? text.metrics.width / 2 : text.metrics.width;
+    const double u = halign == HAlign::left     ? 0.0
+                     : halign == HAlign::center ? text.metrics.width / 2
+                                                : text.metrics.width;
     double v = 0.0;
     switch (valign) {
-        case VAlign::top: v = text.metrics.ascent; break;
-        case VAlign::baseline: v = 0.0; break;
-        case VAlign::digits_middle: v = digit_height(size) / 2; break;
-        case VAlign::bottom: v = -text.metrics.descent; break;
+        case VAlign::top:
+            v = text.metrics.ascent;
+            break;
+        case VAlign::baseline:
+            v = 0.0;
+            break;
+        case VAlign::digits_middle:
+            v = digit_height(size) / 2;
+            break;
+        case VAlign::bottom:
+            v = -text.metrics.descent;
+            break;
     }
     // The text origin (pen start on the baseline) in image pixels, on the integer grid so that
     // hinted glyphs stay crisp.
@@ -219,8 +244,10 @@ void Font::draw(Image& image, const std::vector<TextRun>& runs, double size, dou
                 // Text-frame pixel: right of the origin by tu, above the baseline by tv.
                 const int tu = p.x + g.left + c;
                 const int tv = p.baseline + g.top - r;
-                if (vertical) blend(image, ox - tv, oy - tu - 1, a, rgb);
-                else blend(image, ox + tu, oy - tv, a, rgb);
+                if (vertical)
+                    blend(image, ox - tv, oy - tu - 1, a, rgb);
+                else
+                    blend(image, ox + tu, oy - tv, a, rgb);
             }
         }
     }

@@ -41,8 +41,8 @@ struct TextMetrics {
 struct GlyphBitmap {
     int width = 0;
     int rows = 0;
-    int left = 0;  ///< pixels from the pen to the bitmap's left edge
-    int top = 0;   ///< pixels from the baseline up to the bitmap's top row
+    int left = 0;          ///< pixels from the pen to the bitmap's left edge
+    int top = 0;           ///< pixels from the baseline up to the bitmap's top row
     double advance = 0.0;  ///< unhinted advance width in pixels
     std::vector<unsigned char> coverage;
 };
@@ -59,7 +59,9 @@ class Font {
     /// The extent of \p runs set at base size \p size pixels.
     TextMetrics measure(const std::vector<TextRun>& runs, double size);
     /// The extent of the markup \p text set at \p size pixels.
-    TextMetrics measure(std::string_view text, double size) { return measure(parse_markup(text), size); }
+    TextMetrics measure(std::string_view text, double size) {
+        return measure(parse_markup(text), size);
+    }
 
     /// Like measure(), but at least as tall as a line of text ("Ay") at that size, so that
     /// labels without ascenders or descenders (e.g. "x") take the same room as any other.
@@ -77,8 +79,8 @@ class Font {
     void draw(Image& image, const std::vector<TextRun>& runs, double size, double x, double y,
               HAlign halign, VAlign valign, const Color& color, bool vertical = false);
     /// Same for markup text.
-    void draw(Image& image, std::string_view text, double size, double x, double y,
-              HAlign halign, VAlign valign, const Color& color, bool vertical = false) {
+    void draw(Image& image, std::string_view text, double size, double x, double y, HAlign halign,
+              VAlign valign, const Color& color, bool vertical = false) {
         draw(image, parse_markup(text), size, x, y, halign, valign, color, vertical);
     }
 

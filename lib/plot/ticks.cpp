@@ -130,11 +130,13 @@ TickSet mantissa_ticks(double lo, double hi, int max_labels) {
             return v.exponent >= -3 && v.exponent <= 4;
         });
         TickSet set;
-        for (const LogValue& v : labelled) set.ticks.push_back({v.value(), mantissa_label(v, plain), true});
+        for (const LogValue& v : labelled)
+            set.ticks.push_back({v.value(), mantissa_label(v, plain), true});
         for (const LogValue& v : log_values(lo, hi, {1, 2, 3, 4, 5, 6, 7, 8, 9})) {
-            const bool taken = std::any_of(labelled.begin(), labelled.end(), [&](const LogValue& l) {
-                return l.mantissa == v.mantissa && l.exponent == v.exponent;
-            });
+            const bool taken =
+                std::any_of(labelled.begin(), labelled.end(), [&](const LogValue& l) {
+                    return l.mantissa == v.mantissa && l.exponent == v.exponent;
+                });
             if (!taken) set.ticks.push_back({v.value(), "", false});
         }
         return set;

@@ -96,7 +96,8 @@ struct ReflectingSphere {
   ReflectingSphere() = default;
   ReflectingSphere(const Vec<D>& c, double r) : centre(c), radius(r) {
     require(c.allFinite(), "reflecting sphere: the centre must be finite");
-    require(std::isfinite(r) && r > 0, "reflecting sphere: the radius must be positive (got " + show(r) + ")");
+    require(std::isfinite(r) && r > 0,
+            "reflecting sphere: the radius must be positive (got " + show(r) + ")");
   }
 
   static constexpr bool moves(std::size_t, const Particles<D>&) { return true; }
@@ -105,8 +106,9 @@ struct ReflectingSphere {
     NoBoundaries{}.validate(p);
     for (std::size_t i = 0; i < p.size(); ++i) {
       if ((p.position[i] - centre).norm() > radius) {
-        throw Error("reflecting sphere: particle " + show(i) + " at " + to_string<D>(p.position[i]) +
-                    " starts outside the sphere of radius " + show(radius));
+        throw Error("reflecting sphere: particle " + show(i) + " at " +
+                    to_string<D>(p.position[i]) + " starts outside the sphere of radius " +
+                    show(radius));
       }
     }
   }
@@ -133,8 +135,9 @@ struct ReflectingSphere {
   }
   /// What went wrong when constrain() returned false.
   std::string describe_failure(const Vec<D>& x) const {
-    return "reflecting sphere: the particle at " + to_string<D>(x) + " crossed the wall of radius " +
-           show(radius) + " and cannot be brought back along its path (the step is far too long for "
+    return "reflecting sphere: the particle at " + to_string<D>(x) +
+           " crossed the wall of radius " + show(radius) +
+           " and cannot be brought back along its path (the step is far too long for "
            "the wall)";
   }
 };

@@ -17,8 +17,8 @@ namespace sph {
 
 template <int D>
 struct Box {
-  Vec<D> lower = Vec<D>::Zero();  ///< lower corner (used on periodic axes)
-  Vec<D> upper = Vec<D>::Ones();  ///< upper corner (used on periodic axes)
+  Vec<D> lower = Vec<D>::Zero();   ///< lower corner (used on periodic axes)
+  Vec<D> upper = Vec<D>::Ones();   ///< upper corner (used on periodic axes)
   std::array<bool, D> periodic{};  ///< per axis: periodic (true) or open (false)
 
   /// A box periodic in every axis.

@@ -115,7 +115,10 @@ inline bool NeighbourSearch<D, K>::advance_frame(const Particles<D>& p, const Bo
   for (int a = 0; a < D; ++a) moved_[a].resize(n);
   int bad = 0, any = 0;
   double h_max = 0;
-#pragma omp parallel for schedule(static) reduction(| : bad, any) reduction(max : h_max) if (n >= parallel_threshold)
+#pragma omp parallel for schedule(static) reduction(|           \
+                                                    : bad, any) \
+    reduction(max                                               \
+              : h_max) if (n >= parallel_threshold)
   for (std::size_t i = 0; i < n; ++i) {
     const Vec<D> step = box.separation(p.position[i], previous_position_[i]);
     previous_position_[i] = p.position[i];
@@ -143,9 +146,11 @@ inline bool NeighbourSearch<D, K>::advance_frame(const Particles<D>& p, const Bo
 // cover; false if that radius is not enough.  `unwrapped` views the unwrapped positions, in
 // whose frame the images of the candidates hold.
 template <int D, class K>
-inline bool NeighbourSearch<D, K>::settle_from_candidates(
-    Particles<D>& p, const SmoothingLengthRule& rule, Block& block, std::size_t i, double covered,
-    const PositionView<D>& unwrapped) {
+inline bool NeighbourSearch<D, K>::settle_from_candidates(Particles<D>& p,
+                                                          const SmoothingLengthRule& rule,
+                                                          Block& block, std::size_t i,
+                                                          double covered,
+                                                          const PositionView<D>& unwrapped) {
   const CandidateSpan found = refreshed(block, i, unwrapped);
   double& h = p.smoothing_length[i];
   bool settled = true;
@@ -172,7 +177,7 @@ inline CandidateSpan NeighbourSearch<D, K>::refreshed(Block& block, std::size_t 
                                                       const PositionView<D>& unwrapped) const {
   const CandidateSpan found = block.span(first_[i], last_[i]);
   const PositionView<D> u = unwrapped;  // a private copy: its pointers stay in registers
-#pragma omp simd simdlen(8) if(simd : D > 1)
+#pragma omp simd simdlen(8) if (simd : D > 1)
   for (std::size_t k = 0; k < found.size; ++k)
     found.r2[k] = u.distance2(i, {found.index[k], found.image[k]});
   return found;

@@ -105,20 +105,22 @@ class CellGrid {
   void for_each_within(const Vec<D>& point, double radius, F&& f) const {
     const double radius2 = radius * radius;
     std::uint32_t hit[scan_block];
-    for_each_block_within(point, radius, [&](const std::uint32_t* index, const double* r2, std::size_t count, Image image) {
-      // Compact the hits without a branch: about one candidate in three is one, too irregular
-      // for the branch predictor.
-      std::uint32_t hits = 0;
-      for (std::uint32_t k = 0; k < count; ++k) {
-        hit[hits] = k;
-        hits += r2[k] < radius2;
-      }
-      const Vec<D> shifted = point - image_offset<D>(image, box_);
-      for (std::uint32_t n = 0; n < hits; ++n) {
-        const std::uint32_t k = hit[n];
-        f(index[k], image, Vec<D>(shifted - position_of(index + k)), r2[k]);
-      }
-    });
+    for_each_block_within(
+        point, radius,
+        [&](const std::uint32_t* index, const double* r2, std::size_t count, Image image) {
+          // Compact the hits without a branch: about one candidate in three is one, too irregular
+          // for the branch predictor.
+          std::uint32_t hits = 0;
+          for (std::uint32_t k = 0; k < count; ++k) {
+            hit[hits] = k;
+            hits += r2[k] < radius2;
+          }
+          const Vec<D> shifted = point - image_offset<D>(image, box_);
+          for (std::uint32_t n = 0; n < hits; ++n) {
+            const std::uint32_t k = hit[n];
+            f(index[k], image, Vec<D>(shifted - position_of(index + k)), r2[k]);
+          }
+        });
   }
 
   /// The same query in blocks: call f(index, r2, count, image) for consecutive runs of up to
@@ -213,7 +215,8 @@ class CellGrid {
   // The distances are computed from per-axis coordinate arrays in a branch-free loop the
   // compiler vectorises.
   template <class F>
-  void scan_range(std::uint32_t first, std::uint32_t last, const Vec<D>& point, Image image, F& f) const {
+  void scan_range(std::uint32_t first, std::uint32_t last, const Vec<D>& point, Image image,
+                  F& f) const {
     constexpr std::uint32_t block = scan_block;
     double r2[block];
     for (std::uint32_t start = first; start < last; start += block) {
@@ -231,7 +234,8 @@ class CellGrid {
         }
         r2[k] = sum;
       }
-      f(sorted_index_.data() + start, static_cast<const double*>(r2), static_cast<std::size_t>(count), image);
+      f(sorted_index_.data() + start, static_cast<const double*>(r2),
+        static_cast<std::size_t>(count), image);
     }
   }
 
@@ -265,8 +269,8 @@ class CellGrid {
       // (far off, jump by the factor that would fit if the cells shrank alike on every axis)
       target *= total > 1e3 * max_cells ? std::pow(total / max_cells, 1.0 / D) : 1.25;
     }
-    throw Error("cell grid: no cell size fits particles spread from " + to_string<D>(lo) + " to " + to_string<D>(hi) +
-                " (a position far from the others?)");
+    throw Error("cell grid: no cell size fits particles spread from " + to_string<D>(lo) + " to " +
+                to_string<D>(hi) + " (a position far from the others?)");
   }
 
   int cell_coordinate(double xa, int a) const {
@@ -307,7 +311,9 @@ class CellGrid {
 
   static constexpr std::uint32_t scan_block = 32;  // particles per block of a scan
   // The position of the sorted particle whose index entry is at `entry`.
-  const Vec<D>& position_of(const std::uint32_t* entry) const { return sorted_position_[entry - sorted_index_.data()]; }
+  const Vec<D>& position_of(const std::uint32_t* entry) const {
+    return sorted_position_[entry - sorted_index_.data()];
+  }
 
   Box<D> box_;
   Vec<D> origin_ = Vec<D>::Zero();

@@ -35,7 +35,8 @@ namespace sph {
 /// What one run measured, before timing is added: the spacing and the errors.
 struct Measurement {
   double resolution = 0;  ///< particle spacing Δx
-  std::vector<std::pair<std::string, double>> errors;  ///< (quantity, error), e.g. ("L1(rho)", 1e-3)
+  std::vector<std::pair<std::string, double>>
+      errors;  ///< (quantity, error), e.g. ("L1(rho)", 1e-3)
 };
 
 /// One run of one method at one resolution.
@@ -51,7 +52,8 @@ struct RunRecord {
     for (const auto& [name, value] : errors) {
       if (name == quantity) return value;
     }
-    throw Error("run '" + method + "' N = " + std::to_string(particles) + " has no error '" + quantity + "'");
+    throw Error("run '" + method + "' N = " + std::to_string(particles) + " has no error '" +
+                quantity + "'");
   }
   bool has(const std::string& quantity) const {
     for (const auto& e : errors) {
@@ -106,10 +108,12 @@ inline PowerLaw fit_power_law(const std::vector<double>& x, const std::vector<do
 
 /// first, first*factor, first*factor^2, ... (count values, rounded to integers).
 inline std::vector<int> geometric_series(int first, double factor, int count) {
-  require(first > 0 && factor > 1 && count > 0, "geometric series: need first > 0, factor > 1, count > 0");
+  require(first > 0 && factor > 1 && count > 0,
+          "geometric series: need first > 0, factor > 1, count > 0");
   std::vector<int> values;
   double value = first;
-  for (int k = 0; k < count; ++k, value *= factor) values.push_back(static_cast<int>(std::lround(value)));
+  for (int k = 0; k < count; ++k, value *= factor)
+    values.push_back(static_cast<int>(std::lround(value)));
   return values;
 }
 
@@ -141,7 +145,8 @@ inline std::string aligned(const std::vector<std::vector<std::string>>& rows) {
   std::vector<std::size_t> width;
   for (const auto& row : rows) {
     width.resize(std::max(width.size(), row.size()), 0);
-    for (std::size_t c = 0; c < row.size(); ++c) width[c] = std::max(width[c], display_width(row[c]));
+    for (std::size_t c = 0; c < row.size(); ++c)
+      width[c] = std::max(width[c], display_width(row[c]));
   }
   std::string text;
   for (const auto& row : rows) {
@@ -178,17 +183,19 @@ class ErrorVsTime {
   /// Add a finished run; sph::Error if a number is not positive and finite (a NaN error never
   /// enters the table).
   void add(RunRecord run) {
-    const std::string who = "error-vs-time '" + title_ + "': run '" + run.method + "' N = " +
-                            std::to_string(run.particles);
+    const std::string who = "error-vs-time '" + title_ + "': run '" + run.method +
+                            "' N = " + std::to_string(run.particles);
     require(!run.method.empty(), who + " has no method name");
     require(run.particles > 0, who + ": particle number must be positive");
     require(std::isfinite(run.resolution) && run.resolution > 0,
             who + ": resolution " + std::to_string(run.resolution) + " (must be positive)");
-    require(std::isfinite(run.seconds) && run.seconds >= 0, who + ": run time " + std::to_string(run.seconds));
+    require(std::isfinite(run.seconds) && run.seconds >= 0,
+            who + ": run time " + std::to_string(run.seconds));
     require(!run.errors.empty(), who + " measured no error");
     for (const auto& [quantity, value] : run.errors) {
-      require(std::isfinite(value) && value >= 0,
-              who + ": error " + quantity + " = " + std::to_string(value) + " (must be finite and >= 0)");
+      require(std::isfinite(value) && value >= 0, who + ": error " + quantity + " = " +
+                                                      std::to_string(value) +
+                                                      " (must be finite and >= 0)");
     }
     records_.push_back(std::move(run));
   }
@@ -198,7 +205,8 @@ class ErrorVsTime {
   const RunRecord& run(const std::string& method, int particles, Scene&& scene) {
     const auto start = std::chrono::steady_clock::now();
     Measurement measured = scene(particles);
-    const double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+    const double seconds =
+        std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
     add({method, particles, measured.resolution, seconds, std::move(measured.errors)});
     return records_.back();
   }
@@ -210,15 +218,19 @@ class ErrorVsTime {
     for (int n : particle_numbers) {
       const RunRecord& r = run(method, n, scene);
       if (!log) continue;
-      *log << method << ": N = " << n << ", dx = " << convergence_detail::format("%.3e", r.resolution)
-           << ", " << convergence_detail::format("%.3g", r.seconds) << " s";
-      for (const auto& [quantity, value] : r.errors) *log << ", " << quantity << " = " << convergence_detail::format("%.3e", value);
+      *log << method << ": N = " << n
+           << ", dx = " << convergence_detail::format("%.3e", r.resolution) << ", "
+           << convergence_detail::format("%.3g", r.seconds) << " s";
+      for (const auto& [quantity, value] : r.errors)
+        *log << ", " << quantity << " = " << convergence_detail::format("%.3e", value);
       *log << "\n";
     }
   }
 
   /// The methods, in the order they first appear.
-  std::vector<std::string> methods() const { return unique([](const RunRecord& r) { return std::vector{r.method}; }); }
+  std::vector<std::string> methods() const {
+    return unique([](const RunRecord& r) { return std::vector{r.method}; });
+  }
 
   /// The error quantities, in the order they first appear.
   std::vector<std::string> quantities() const {
@@ -235,8 +247,9 @@ class ErrorVsTime {
     for (const RunRecord& r : records_) {
       if (r.method == method) runs.push_back(r);
     }
-    std::stable_sort(runs.begin(), runs.end(),
-                     [](const RunRecord& a, const RunRecord& b) { return a.resolution > b.resolution; });
+    std::stable_sort(runs.begin(), runs.end(), [](const RunRecord& a, const RunRecord& b) {
+      return a.resolution > b.resolution;
+    });
     return runs;
   }
 
@@ -281,7 +294,8 @@ class ErrorVsTime {
       for (const RunRecord& r : series(method)) {
         std::vector<std::string> row = {first ? method : "", std::to_string(r.particles),
                                         format("%.3e", r.resolution), format("%.3g", r.seconds)};
-        for (const std::string& q : names) row.push_back(r.has(q) ? format("%.3e", r.error(q)) : "-");
+        for (const std::string& q : names)
+          row.push_back(r.has(q) ? format("%.3e", r.error(q)) : "-");
         rows.push_back(row);
         first = false;
       }
@@ -289,9 +303,11 @@ class ErrorVsTime {
     std::string text = title_ + "\n\n" + convergence_detail::aligned(rows);
     // The fits: order p against dx and cost slope s against wall time.
     text += "\norder p, error ~ dx^p (least-squares slope of ln error against ln dx)\n";
-    text += fits_table(names, [this](const std::string& m, const std::string& q) { return order(m, q); });
+    text += fits_table(names,
+                       [this](const std::string& m, const std::string& q) { return order(m, q); });
     text += "\ncost slope s, error ~ (wall time)^s (more negative: more accuracy per second)\n";
-    text += fits_table(names, [this](const std::string& m, const std::string& q) { return cost_slope(m, q); });
+    text += fits_table(
+        names, [this](const std::string& m, const std::string& q) { return cost_slope(m, q); });
     return text;
   }
 
@@ -309,8 +325,8 @@ class ErrorVsTime {
   }
 
   /// A power-law fit with a message naming the method and quantity when it cannot be made.
-  static PowerLaw fit(const std::vector<double>& x, const std::vector<double>& error, const std::string& method,
-                      const std::string& quantity, const char* what) {
+  static PowerLaw fit(const std::vector<double>& x, const std::vector<double>& error,
+                      const std::string& method, const std::string& quantity, const char* what) {
     std::vector<double> xs, ys;
     for (std::size_t k = 0; k < x.size(); ++k) {
       if (x[k] > 0 && error[k] > 0) {
@@ -318,9 +334,10 @@ class ErrorVsTime {
         ys.push_back(error[k]);
       }
     }
-    const bool distinct = !xs.empty() && *std::min_element(xs.begin(), xs.end()) < *std::max_element(xs.begin(), xs.end());
-    require(distinct, "cannot fit " + quantity + " of '" + method + "': fewer than two distinct " + what +
-                          " with a positive error");
+    const bool distinct = !xs.empty() && *std::min_element(xs.begin(), xs.end()) <
+                                             *std::max_element(xs.begin(), xs.end());
+    require(distinct, "cannot fit " + quantity + " of '" + method + "': fewer than two distinct " +
+                          what + " with a positive error");
     return fit_power_law(xs, ys);
   }
 

@@ -48,15 +48,17 @@ struct DensityForm {
 
   static DensityForm selhammar() { return {Sum::pair_averaged, true}; }
   static DensityForm watkins(bool self_term = true) { return {Sum::gather, self_term}; }
-  const char* name() const { return sum == Sum::pair_averaged ? "pair-averaged (Selhammar eq 5)" : "gather (Watkins eq A1)"; }
+  const char* name() const {
+    return sum == Sum::pair_averaged ? "pair-averaged (Selhammar eq 5)" : "gather (Watkins eq A1)";
+  }
 };
 
 /// rho_i of one particle by the chosen form.  The loop over neighbours has no branches (the
 /// form is chosen outside it, and a pair past the kernel's support adds an exact zero), so the
 /// compiler runs it on several pairs at once in SIMD registers.
 template <int D, class K>
-double density_of(const Particles<D>& p, const NeighbourList<D>& list, const PositionView<D>& positions,
-                  std::size_t i, DensityForm form) {
+double density_of(const Particles<D>& p, const NeighbourList<D>& list,
+                  const PositionView<D>& positions, std::size_t i, DensityForm form) {
   const PositionView<D> x = positions;  // a private copy: its pointers stay in registers
   const double* h = p.smoothing_length.data();
   const double* m = p.mass.data();
@@ -64,14 +66,14 @@ double density_of(const Particles<D>& p, const NeighbourList<D>& list, const Pos
   const auto count = static_cast<std::ptrdiff_t>(nb.size());
   double rho = 0;
   if (form.sum == DensityForm::Sum::pair_averaged) {
-#pragma omp simd simdlen(8) if(simd : D > 1) reduction(+ : rho)
+#pragma omp simd simdlen(8) if (simd : D > 1) reduction(+ : rho)
     for (std::ptrdiff_t k = 0; k < count; ++k) {
       const Neighbour& n = nb[static_cast<std::size_t>(k)];
       const std::size_t j = n.index;
       rho += 0.5 * (m[i] + m[j]) * K::value(x.distance(i, n), 0.5 * (h[i] + h[j]));
     }
   } else {
-#pragma omp simd simdlen(8) if(simd : D > 1) reduction(+ : rho)
+#pragma omp simd simdlen(8) if (simd : D > 1) reduction(+ : rho)
     for (std::ptrdiff_t k = 0; k < count; ++k) {
       const Neighbour& n = nb[static_cast<std::size_t>(k)];
       rho += m[n.index] * K::value(x.distance(i, n), h[i]);
@@ -96,8 +98,10 @@ struct VelocitySums {
 /// density_of's in the last bit for about half the particles of a 2D or 3D set;
 /// tests/sph/test_velocity_fields.cpp.)
 template <int D, class K, Needs needs>
-VelocitySums velocity_sums(const Particles<D>& p, const NeighbourList<D>& list, const PositionView<D>& positions,
-                           const std::array<const double*, D>& velocities, std::size_t i, DensityForm form) {
+VelocitySums velocity_sums(const Particles<D>& p, const NeighbourList<D>& list,
+                           const PositionView<D>& positions,
+                           const std::array<const double*, D>& velocities, std::size_t i,
+                           DensityForm form) {
   constexpr bool curl = has(needs, Needs::velocity_curl) && D > 1;
   const PositionView<D> x = positions;  // private copies: their pointers stay in registers
   const std::array<const double*, D> v = velocities;
@@ -107,7 +111,7 @@ VelocitySums velocity_sums(const Particles<D>& p, const NeighbourList<D>& list, 
   const auto count = static_cast<std::ptrdiff_t>(nb.size());
   const bool averaged = form.sum == DensityForm::Sum::pair_averaged;
   double rate = 0, c0 = 0, c1 = 0, c2 = 0;
-#pragma omp simd simdlen(8) if(simd : D > 1) reduction(+ : rate, c0, c1, c2)
+#pragma omp simd simdlen(8) if (simd : D > 1) reduction(+ : rate, c0, c1, c2)
   for (std::ptrdiff_t k = 0; k < count; ++k) {
     const Neighbour& n = nb[static_cast<std::size_t>(k)];
     const std::size_t j = n.index;
@@ -152,9 +156,10 @@ struct NoFinish {
 /// per axis, by a second loop over each particle's neighbours (velocity_sums); without, the
 /// pass is the plain density sum and `velocities` is not read.  rho is the same in both.
 template <int D, class K = Kernel<D>, Needs needs = Needs::nothing, class Finish = NoFinish>
-void compute_density(Particles<D>& p, const NeighbourList<D>& list, const PositionView<D>& positions,
-                     DensityForm form = DensityForm::selhammar(), const Finish& finish = {},
-                     const std::array<const double*, D>& velocities = {}, DerivedFields<D>* fields = nullptr) {
+void compute_density(Particles<D>& p, const NeighbourList<D>& list,
+                     const PositionView<D>& positions, DensityForm form = DensityForm::selhammar(),
+                     const Finish& finish = {}, const std::array<const double*, D>& velocities = {},
+                     DerivedFields<D>* fields = nullptr) {
   const std::size_t n = p.size();
   require_positive_masses(p, "density");
   constexpr bool rates = any_velocity_field(needs);
@@ -169,9 +174,11 @@ void compute_density(Particles<D>& p, const NeighbourList<D>& list, const Positi
     if constexpr (rates) {
       const VelocitySums sums = velocity_sums<D, K, needs>(p, list, positions, velocities, i, form);
       if constexpr (has(needs, Needs::density_rate)) fields->density_rate[i] = sums.rate;
-      if constexpr (has(needs, Needs::velocity_divergence)) fields->velocity_divergence[i] = -sums.rate / rho;
+      if constexpr (has(needs, Needs::velocity_divergence))
+        fields->velocity_divergence[i] = -sums.rate / rho;
       if constexpr (has(needs, Needs::velocity_curl)) {
-        for (int a = 0; a < curl_components<D>; ++a) fields->velocity_curl[a][i] = sums.curl[a] / rho;
+        for (int a = 0; a < curl_components<D>; ++a)
+          fields->velocity_curl[a][i] = sums.curl[a] / rho;
       }
     }
     p.density[i] = rho;
@@ -185,16 +192,15 @@ void compute_density(Particles<D>& p, const NeighbourList<D>& list, const Positi
   if (bad >= 0) {
     const auto i = static_cast<std::size_t>(bad);
     throw Error("density: particle " + show(i) + " at " + to_string<D>(p.position[i]) +
-                " has density " + show(p.density[i]) + " (" +
-                show(list.of(i).size()) + " neighbours, h = " +
-                show(p.smoothing_length[i]) + ")");
+                " has density " + show(p.density[i]) + " (" + show(list.of(i).size()) +
+                " neighbours, h = " + show(p.smoothing_length[i]) + ")");
   }
 }
 
 /// The density pass at the particles' current positions.
 template <int D, class K = Kernel<D>, class Finish = NoFinish>
-void compute_density(Particles<D>& p, const NeighbourList<D>& list, DensityForm form = DensityForm::selhammar(),
-                     const Finish& finish = {}) {
+void compute_density(Particles<D>& p, const NeighbourList<D>& list,
+                     DensityForm form = DensityForm::selhammar(), const Finish& finish = {}) {
   PositionArrays<D> positions;
   positions.assign(p.position);
   compute_density<D, K, Needs::nothing>(p, list, positions.view(list.box()), form, finish);

@@ -92,7 +92,8 @@ struct Totals {
 
 template <int D>
 Totals<D> totals(const Particles<D>& p) {
-  return {total_mass(p), kinetic_energy(p), thermal_energy(p), total_momentum(p), centre_of_mass(p)};
+  return {total_mass(p), kinetic_energy(p), thermal_energy(p), total_momentum(p),
+          centre_of_mass(p)};
 }
 
 // ---------------------------------------------------------------------------------------------
@@ -100,23 +101,41 @@ Totals<D> totals(const Particles<D>& p) {
 
 /// The fields of Particles<D>, by name, for check_finite.
 enum class Field {
-  position, velocity, mass, internal_energy, smoothing_length, density, pressure, sound_speed,
-  acceleration, energy_rate
+  position,
+  velocity,
+  mass,
+  internal_energy,
+  smoothing_length,
+  density,
+  pressure,
+  sound_speed,
+  acceleration,
+  energy_rate
 };
 
 /// The member name of a field ("smoothing_length").
 inline const char* field_name(Field f) {
   switch (f) {
-    case Field::position: return "position";
-    case Field::velocity: return "velocity";
-    case Field::mass: return "mass";
-    case Field::internal_energy: return "internal_energy";
-    case Field::smoothing_length: return "smoothing_length";
-    case Field::density: return "density";
-    case Field::pressure: return "pressure";
-    case Field::sound_speed: return "sound_speed";
-    case Field::acceleration: return "acceleration";
-    case Field::energy_rate: return "energy_rate";
+    case Field::position:
+      return "position";
+    case Field::velocity:
+      return "velocity";
+    case Field::mass:
+      return "mass";
+    case Field::internal_energy:
+      return "internal_energy";
+    case Field::smoothing_length:
+      return "smoothing_length";
+    case Field::density:
+      return "density";
+    case Field::pressure:
+      return "pressure";
+    case Field::sound_speed:
+      return "sound_speed";
+    case Field::acceleration:
+      return "acceleration";
+    case Field::energy_rate:
+      return "energy_rate";
   }
   return "?";
 }
@@ -133,7 +152,8 @@ template <int D>
 
 /// Check one scalar field: the right size and every entry finite.
 template <int D>
-void check_scalar(const Particles<D>& p, const std::vector<double>& values, Field f, const std::string& pass) {
+void check_scalar(const Particles<D>& p, const std::vector<double>& values, Field f,
+                  const std::string& pass) {
   require(values.size() == p.size(), pass + ": field " + field_name(f) + " has " +
                                          std::to_string(values.size()) + " entries for " +
                                          std::to_string(p.size()) + " particles");
@@ -144,7 +164,8 @@ void check_scalar(const Particles<D>& p, const std::vector<double>& values, Fiel
 
 /// Check one vector field the same way.
 template <int D>
-void check_vector(const Particles<D>& p, const std::vector<Vec<D>>& values, Field f, const std::string& pass) {
+void check_vector(const Particles<D>& p, const std::vector<Vec<D>>& values, Field f,
+                  const std::string& pass) {
   require(values.size() == p.size(), pass + ": field " + field_name(f) + " has " +
                                          std::to_string(values.size()) + " entries for " +
                                          std::to_string(p.size()) + " particles");
@@ -163,20 +184,41 @@ void check_vector(const Particles<D>& p, const std::vector<Vec<D>>& values, Fiel
 /// sph::check_finite(p, {sph::Field::density}, "density pass");
 /// \endcode
 template <int D>
-void check_finite(const Particles<D>& p, std::initializer_list<Field> fields, const std::string& pass) {
+void check_finite(const Particles<D>& p, std::initializer_list<Field> fields,
+                  const std::string& pass) {
   using namespace diagnostics_detail;
   for (Field f : fields) {
     switch (f) {
-      case Field::position: check_vector(p, p.position, f, pass); break;
-      case Field::velocity: check_vector(p, p.velocity, f, pass); break;
-      case Field::acceleration: check_vector(p, p.acceleration, f, pass); break;
-      case Field::mass: check_scalar(p, p.mass, f, pass); break;
-      case Field::internal_energy: check_scalar(p, p.internal_energy, f, pass); break;
-      case Field::smoothing_length: check_scalar(p, p.smoothing_length, f, pass); break;
-      case Field::density: check_scalar(p, p.density, f, pass); break;
-      case Field::pressure: check_scalar(p, p.pressure, f, pass); break;
-      case Field::sound_speed: check_scalar(p, p.sound_speed, f, pass); break;
-      case Field::energy_rate: check_scalar(p, p.energy_rate, f, pass); break;
+      case Field::position:
+        check_vector(p, p.position, f, pass);
+        break;
+      case Field::velocity:
+        check_vector(p, p.velocity, f, pass);
+        break;
+      case Field::acceleration:
+        check_vector(p, p.acceleration, f, pass);
+        break;
+      case Field::mass:
+        check_scalar(p, p.mass, f, pass);
+        break;
+      case Field::internal_energy:
+        check_scalar(p, p.internal_energy, f, pass);
+        break;
+      case Field::smoothing_length:
+        check_scalar(p, p.smoothing_length, f, pass);
+        break;
+      case Field::density:
+        check_scalar(p, p.density, f, pass);
+        break;
+      case Field::pressure:
+        check_scalar(p, p.pressure, f, pass);
+        break;
+      case Field::sound_speed:
+        check_scalar(p, p.sound_speed, f, pass);
+        break;
+      case Field::energy_rate:
+        check_scalar(p, p.energy_rate, f, pass);
+        break;
     }
   }
 }
@@ -184,9 +226,10 @@ void check_finite(const Particles<D>& p, std::initializer_list<Field> fields, co
 /// Check every field of Particles<D>.
 template <int D>
 void check_all_finite(const Particles<D>& p, const std::string& pass) {
-  check_finite(p, {Field::position, Field::velocity, Field::mass, Field::internal_energy,
-                   Field::smoothing_length, Field::density, Field::pressure, Field::sound_speed,
-                   Field::acceleration, Field::energy_rate},
+  check_finite(p,
+               {Field::position, Field::velocity, Field::mass, Field::internal_energy,
+                Field::smoothing_length, Field::density, Field::pressure, Field::sound_speed,
+                Field::acceleration, Field::energy_rate},
                pass);
 }
 
@@ -232,7 +275,8 @@ class EnergyHistory {
 
   /// Append the energies of the particles at time t.
   template <int D>
-  void record(double t, const Particles<D>& p, std::optional<double> potential_energy = std::nullopt) {
+  void record(double t, const Particles<D>& p,
+              std::optional<double> potential_energy = std::nullopt) {
     record(t, kinetic_energy(p), thermal_energy(p), potential_energy);
   }
 

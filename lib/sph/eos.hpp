@@ -20,10 +20,13 @@ struct IdealGas {
   static constexpr const char* name = "ideal gas";
 
   explicit IdealGas(double g = 5.0 / 3.0) : gamma(g) {
-    require(std::isfinite(g) && g > 1.0, "ideal gas: the adiabatic index gamma must exceed 1 (got " + show(g) + ")");
+    require(std::isfinite(g) && g > 1.0,
+            "ideal gas: the adiabatic index gamma must exceed 1 (got " + show(g) + ")");
   }
   double pressure(double rho, double u) const { return (gamma - 1.0) * rho * u; }
-  double sound_speed(double rho, double u) const { return std::sqrt(gamma * pressure(rho, u) / rho); }
+  double sound_speed(double rho, double u) const {
+    return std::sqrt(gamma * pressure(rho, u) / rho);
+  }
   /// u from pressure and density, for setting up states given as (rho, P).
   double internal_energy(double rho, double P) const { return P / ((gamma - 1.0) * rho); }
 };
@@ -40,7 +43,9 @@ struct Polytropic {
     require(std::isfinite(g) && g >= 1.0, "polytropic gas: gamma must be at least 1");
   }
   double pressure(double rho, double) const { return K * std::pow(rho, gamma); }
-  double sound_speed(double rho, double u) const { return std::sqrt(gamma * pressure(rho, u) / rho); }
+  double sound_speed(double rho, double u) const {
+    return std::sqrt(gamma * pressure(rho, u) / rho);
+  }
 };
 
 /// Isothermal gas, \f$ P = c^2 \rho \f$.

@@ -23,10 +23,7 @@ class Error : public std::runtime_error {
 /// (`%g`: 1e-08, 0.163, 2.5e+06 -- never 0.000000 for a small number, never 300 digits for a
 /// large one).
 template <class T>
-  requires std::integral<T>
-std::string show(T value) {
-  return std::to_string(value);
-}
+requires std::integral<T> std::string show(T value) { return std::to_string(value); }
 inline std::string show(double value) {
   char text[32];
   std::snprintf(text, sizeof text, "%g", value);

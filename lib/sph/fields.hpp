@@ -32,23 +32,30 @@ enum class Needs : unsigned {
 };
 constexpr Needs operator|(Needs a, Needs b) { return Needs(unsigned(a) | unsigned(b)); }
 /// Whether `set` contains every flag of `flags`.
-constexpr bool has(Needs set, Needs flags) { return (unsigned(set) & unsigned(flags)) == unsigned(flags); }
+constexpr bool has(Needs set, Needs flags) {
+  return (unsigned(set) & unsigned(flags)) == unsigned(flags);
+}
 /// Whether `set` asks for any of the velocity-derivative fields.
 constexpr bool any_velocity_field(Needs set) { return unsigned(set) != 0; }
 
 /// Components of the curl of a velocity: none in 1D, one (the z-component) in 2D, three in 3D.
 template <int D>
-inline constexpr int curl_components = D == 1 ? 0 : D == 2 ? 1 : 3;
+inline constexpr int curl_components = D == 1   ? 0
+                                       : D == 2 ? 1
+                                                : 3;
 
 /// The per-particle fields that exist only when some part of the scene uses them.  An array
 /// that nobody asked for stays empty.
 template <int D>
 struct DerivedFields {
-  std::vector<double> p_over_rho2;  ///< \f$ P_i/\rho_i^2 \f$ (equation-of-state pass), for the pressure terms
-  std::vector<double> max_mu;       ///< \f$ \max_j |\mu_{ij}| \f$ (force pass), for the time step of eq 7
+  std::vector<double>
+      p_over_rho2;  ///< \f$ P_i/\rho_i^2 \f$ (equation-of-state pass), for the pressure terms
+  std::vector<double>
+      max_mu;  ///< \f$ \max_j |\mu_{ij}| \f$ (force pass), for the time step of eq 7
   std::vector<double> density_rate;         ///< \f$ \dot\rho_i \f$ (density pass)
   std::vector<double> velocity_divergence;  ///< \f$ (\nabla\cdot\mathbf v)_i \f$ (density pass)
-  std::array<std::vector<double>, curl_components<D>> velocity_curl;  ///< per component (density pass)
+  std::array<std::vector<double>, curl_components<D>>
+      velocity_curl;  ///< per component (density pass)
 
   /// Size the velocity-derivative fields in `needs` for n particles (the others stay empty).
   /// Done before a pass hands out pointers to them, so no pointer outlives a reallocation.

@@ -83,7 +83,8 @@ struct PairForce {
 
 /// The force between particle i and one neighbour: the geometry, then every term of the scene.
 template <int D, class K, class TermList>
-inline auto pair_force(const ParticleView<D>& in, const TermList& terms, std::size_t i, const Neighbour& nb) {
+inline auto pair_force(const ParticleView<D>& in, const TermList& terms, std::size_t i,
+                       const Neighbour& nb) {
   const Pair<D> pr = pair_geometry<D, K>(in, i, nb);
   constexpr bool heating = TermList::template any_heating<D>;
   PairForce<TermList::template any_pair_acceleration<D>, heating> out;
@@ -95,7 +96,8 @@ inline auto pair_force(const ParticleView<D>& in, const TermList& terms, std::si
   out.mu = bracket.mu;
 #pragma GCC unroll 3
   for (int a = 0; a < D; ++a) out.r_ij[a] = pr.r_ij[a];
-  if constexpr (TermList::template any_pair_acceleration<D>) out.extra = pair_acceleration_of<D>(terms, pr, in);
+  if constexpr (TermList::template any_pair_acceleration<D>)
+    out.extra = pair_acceleration_of<D>(terms, pr, in);
   return out;
 }
 
@@ -115,7 +117,8 @@ void compute_forces(Particles<D>& p, const NeighbourList<D>& list, const Particl
     const std::span<const Neighbour> nb = list.of(i);
     const auto count = static_cast<std::ptrdiff_t>(nb.size());
     double a0 = 0, a1 = 0, a2 = 0, energy_rate = 0, max_mu = 0;
-#pragma omp simd simdlen(8) if(simd : D > 1) reduction(+ : a0, a1, a2, energy_rate) reduction(max : max_mu)
+#pragma omp simd simdlen(8) if(simd : D > 1) reduction(+ : a0, a1, a2, energy_rate) \
+    reduction(max : max_mu)
     for (std::ptrdiff_t k = 0; k < count; ++k) {
       const auto pf = pair_force<D, K>(local, terms, i, nb[static_cast<std::size_t>(k)]);
       a0 -= pf.f * pf.r_ij[0];

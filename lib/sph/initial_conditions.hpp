@@ -75,9 +75,12 @@ enum class LatticeType {
 /// The name of a lattice type, for tables and figure legends.
 inline const char* lattice_name(LatticeType type) {
   switch (type) {
-    case LatticeType::cubic: return "cubic";
-    case LatticeType::body_centred: return "body-centred cubic";
-    case LatticeType::hexagonal: return "hexagonal";
+    case LatticeType::cubic:
+      return "cubic";
+    case LatticeType::body_centred:
+      return "body-centred cubic";
+    case LatticeType::hexagonal:
+      return "hexagonal";
   }
   return "?";
 }
@@ -96,7 +99,8 @@ inline int points_per_cell(LatticeType type) { return type == LatticeType::body_
 template <int D>
 std::vector<Vec<D>> lattice(LatticeType type, const Vec<D>& lower, const Vec<D>& upper,
                             const std::array<int, D>& cells) {
-  require(type != LatticeType::hexagonal || D == 2, "lattice: the hexagonal lattice exists only in 2D");
+  require(type != LatticeType::hexagonal || D == 2,
+          "lattice: the hexagonal lattice exists only in 2D");
   std::size_t count = static_cast<std::size_t>(points_per_cell(type));
   Vec<D> cell_size;
   for (int a = 0; a < D; ++a) {
@@ -143,8 +147,10 @@ std::vector<Vec<D>> lattice(LatticeType type, const Vec<D>& lower, const Vec<D>&
 /// neighbours, for the body-centred lattice the cell holding two points, for the hexagonal
 /// lattice the distance between neighbours in a row.
 template <int D>
-std::array<int, D> lattice_cells(LatticeType type, const Vec<D>& lower, const Vec<D>& upper, double spacing) {
-  require(std::isfinite(spacing) && spacing > 0, "lattice: the spacing must be positive and finite");
+std::array<int, D> lattice_cells(LatticeType type, const Vec<D>& lower, const Vec<D>& upper,
+                                 double spacing) {
+  require(std::isfinite(spacing) && spacing > 0,
+          "lattice: the spacing must be positive and finite");
   std::array<int, D> cells{};
   for (int a = 0; a < D; ++a) {
     double step = spacing;
@@ -159,7 +165,8 @@ std::array<int, D> lattice_cells(LatticeType type, const Vec<D>& lower, const Ve
 
 /// A lattice of about the given spacing filling the box exactly (see lattice_cells).
 template <int D>
-std::vector<Vec<D>> lattice(LatticeType type, const Vec<D>& lower, const Vec<D>& upper, double spacing) {
+std::vector<Vec<D>> lattice(LatticeType type, const Vec<D>& lower, const Vec<D>& upper,
+                            double spacing) {
   return lattice<D>(type, lower, upper, lattice_cells<D>(type, lower, upper, spacing));
 }
 
@@ -169,7 +176,8 @@ std::vector<Vec<D>> lattice(LatticeType type, const Vec<D>& lower, const Vec<D>&
 
 /// The points with \f$ |\mathbf x - \mathbf c| < R \f$ (a sphere, disc or rod cut from a set).
 template <int D>
-std::vector<Vec<D>> cut_sphere(const std::vector<Vec<D>>& points, const Vec<D>& centre, double radius) {
+std::vector<Vec<D>> cut_sphere(const std::vector<Vec<D>>& points, const Vec<D>& centre,
+                               double radius) {
   require(radius > 0, "cut_sphere: the radius must be positive");
   std::vector<Vec<D>> kept;
   for (const Vec<D>& x : points) {
@@ -180,7 +188,8 @@ std::vector<Vec<D>> cut_sphere(const std::vector<Vec<D>>& points, const Vec<D>& 
 
 /// The points with lower <= x < upper on every axis.
 template <int D>
-std::vector<Vec<D>> cut_box(const std::vector<Vec<D>>& points, const Vec<D>& lower, const Vec<D>& upper) {
+std::vector<Vec<D>> cut_box(const std::vector<Vec<D>>& points, const Vec<D>& lower,
+                            const Vec<D>& upper) {
   std::vector<Vec<D>> kept;
   for (const Vec<D>& x : points) {
     bool inside = true;
@@ -194,8 +203,10 @@ std::vector<Vec<D>> cut_box(const std::vector<Vec<D>>& points, const Vec<D>& low
 /// (Selhammar 1997 §5: "a slightly disturbed lattice"), then wrap it into the box on the box's
 /// periodic axes.  Keep A below half the spacing so that no two points can meet.
 template <int D>
-void disturb(std::vector<Vec<D>>& points, double amplitude, std::uint64_t seed, const Box<D>& box = Box<D>::open()) {
-  require(std::isfinite(amplitude) && amplitude >= 0, "disturb: the amplitude must be non-negative");
+void disturb(std::vector<Vec<D>>& points, double amplitude, std::uint64_t seed,
+             const Box<D>& box = Box<D>::open()) {
+  require(std::isfinite(amplitude) && amplitude >= 0,
+          "disturb: the amplitude must be non-negative");
   Random random(seed);
   for (Vec<D>& x : points) {
     for (int a = 0; a < D; ++a) x[a] += random.uniform(-amplitude, amplitude);
@@ -213,16 +224,19 @@ void disturb(std::vector<Vec<D>>& points, double amplitude, std::uint64_t seed, 
 /// round-off, through the order of the sums).
 template <int D>
 void order_by_cells(std::vector<Vec<D>>& points, double cell) {
-  require(std::isfinite(cell) && cell > 0, "order_by_cells: the cell size must be positive and finite");
+  require(std::isfinite(cell) && cell > 0,
+          "order_by_cells: the cell size must be positive and finite");
   if (points.empty()) return;
   const Vec<D> lo = bounds<D>(points).lo;
   std::vector<std::array<long, D>> key(points.size());
   for (std::size_t i = 0; i < points.size(); ++i) {
-    for (int a = 0; a < D; ++a) key[i][a] = static_cast<long>(std::floor((points[i][a] - lo[a]) / cell));
+    for (int a = 0; a < D; ++a)
+      key[i][a] = static_cast<long>(std::floor((points[i][a] - lo[a]) / cell));
   }
   std::vector<std::size_t> order(points.size());
   std::iota(order.begin(), order.end(), std::size_t{0});
-  std::stable_sort(order.begin(), order.end(), [&key](std::size_t i, std::size_t j) { return key[i] < key[j]; });
+  std::stable_sort(order.begin(), order.end(),
+                   [&key](std::size_t i, std::size_t j) { return key[i] < key[j]; });
   std::vector<Vec<D>> sorted(points.size());
   for (std::size_t k = 0; k < order.size(); ++k) sorted[k] = points[order[k]];
   points = std::move(sorted);
@@ -231,9 +245,11 @@ void order_by_cells(std::vector<Vec<D>>& points, double cell) {
 /// n points drawn independently and uniformly in [lower, upper): a Poisson set, the
 /// "random, unsettled" distribution of Watkins et al. (1996, §3, Fig. 3).
 template <int D>
-std::vector<Vec<D>> uniform_random(const Vec<D>& lower, const Vec<D>& upper, std::size_t n, std::uint64_t seed) {
+std::vector<Vec<D>> uniform_random(const Vec<D>& lower, const Vec<D>& upper, std::size_t n,
+                                   std::uint64_t seed) {
   for (int a = 0; a < D; ++a) {
-    require(upper[a] > lower[a], std::string("uniform_random: the box is empty along ") + axis_name(a));
+    require(upper[a] > lower[a],
+            std::string("uniform_random: the box is empty along ") + axis_name(a));
   }
   Random random(seed);
   std::vector<Vec<D>> points(n);
@@ -247,8 +263,8 @@ std::vector<Vec<D>> uniform_random(const Vec<D>& lower, const Vec<D>& upper, std
 /// exactly coincident).  On a periodic box the distance is measured to the nearest image.
 /// Costs a cell-grid pass, O(N).
 template <int D>
-void require_distinct_positions(const std::vector<Vec<D>>& points, const Box<D>& box = Box<D>::open(),
-                                double min_separation = 0.0) {
+void require_distinct_positions(const std::vector<Vec<D>>& points,
+                                const Box<D>& box = Box<D>::open(), double min_separation = 0.0) {
   if (points.size() < 2) return;
   require(std::isfinite(min_separation) && min_separation >= 0,
           "require_distinct_positions: the minimum separation must be non-negative");
@@ -276,13 +292,14 @@ void require_distinct_positions(const std::vector<Vec<D>>& points, const Box<D>&
   for (std::size_t i = 0; i < points.size(); ++i) wrapped[i] = box.wrap(points[i]);
   grid.build(wrapped, box, min_separation);
   for (std::size_t i = 0; i < wrapped.size(); ++i) {
-    grid.for_each_within(wrapped[i], min_separation, [&](std::uint32_t j, Image image, const Vec<D>&, double r2) {
-      if (j == i && image == 0) return;
-      require(false, "initial conditions: particles " + show(std::min<std::size_t>(i, j)) + " and " +
-                         show(std::max<std::size_t>(i, j)) + " are " + show(std::sqrt(r2)) +
-                         " apart, closer than " + show(min_separation) + ", at " +
-                         to_string<D>(points[i]));
-    });
+    grid.for_each_within(
+        wrapped[i], min_separation, [&](std::uint32_t j, Image image, const Vec<D>&, double r2) {
+          if (j == i && image == 0) return;
+          require(false, "initial conditions: particles " + show(std::min<std::size_t>(i, j)) +
+                             " and " + show(std::max<std::size_t>(i, j)) + " are " +
+                             show(std::sqrt(r2)) + " apart, closer than " + show(min_separation) +
+                             ", at " + to_string<D>(points[i]));
+        });
   }
 }
 
@@ -293,10 +310,11 @@ void require_distinct_positions(const std::vector<Vec<D>>& points, const Box<D>&
 /// Particles at the given points, each of mass `mass`, at rest, with internal energy
 /// `internal_energy` and no smoothing length yet (the neighbour search chooses it).
 template <int D>
-Particles<D> make_particles(const std::vector<Vec<D>>& points, double mass, double internal_energy = 0.0) {
+Particles<D> make_particles(const std::vector<Vec<D>>& points, double mass,
+                            double internal_energy = 0.0) {
   require(!points.empty(), "make_particles: no points");
-  require(std::isfinite(mass) && mass > 0, "make_particles: the mass must be positive and finite (got " +
-                                               show(mass) + ")");
+  require(std::isfinite(mass) && mass > 0,
+          "make_particles: the mass must be positive and finite (got " + show(mass) + ")");
   Particles<D> p;
   p.resize(points.size());
   for (std::size_t i = 0; i < points.size(); ++i) {
@@ -309,15 +327,16 @@ Particles<D> make_particles(const std::vector<Vec<D>>& points, double mass, doub
 
 /// The mass of each of n equal particles that together fill `volume` at `density`.
 inline double equal_mass(double density, double volume, std::size_t n) {
-  require(density > 0 && volume > 0 && n > 0, "equal_mass: density, volume and count must be positive");
+  require(density > 0 && volume > 0 && n > 0,
+          "equal_mass: density, volume and count must be positive");
   return density * volume / static_cast<double>(n);
 }
 
 /// What calibrate_mass_to_density did.
 struct MassCalibration {
-  int iterations = 0;          ///< sweeps of the mass update
-  double initial_error = 0;    ///< max_i |rho_i / rho_target(x_i) - 1| before
-  double final_error = 0;      ///< the same after
+  int iterations = 0;              ///< sweeps of the mass update
+  double initial_error = 0;        ///< max_i |rho_i / rho_target(x_i) - 1| before
+  double final_error = 0;          ///< the same after
   std::size_t worst_particle = 0;  ///< where final_error is reached
 };
 
@@ -352,9 +371,10 @@ struct MassCalibration {
 ///
 /// `target(x)` is the intended density at position x.
 template <int D, class K = Kernel<D>, class Target>
-MassCalibration calibrate_mass_to_density(Particles<D>& p, const NeighbourList<D>& list, Target&& target,
-                                          DensityForm form = DensityForm::selhammar(), int max_iterations = 100,
-                                          double tolerance = 1e-13) {
+MassCalibration calibrate_mass_to_density(Particles<D>& p, const NeighbourList<D>& list,
+                                          Target&& target,
+                                          DensityForm form = DensityForm::selhammar(),
+                                          int max_iterations = 100, double tolerance = 1e-13) {
   require(list.particles() == p.size(), "calibrate_mass_to_density: the neighbour list is for " +
                                             show(list.particles()) + " particles, the set has " +
                                             show(p.size()));
@@ -362,9 +382,9 @@ MassCalibration calibrate_mass_to_density(Particles<D>& p, const NeighbourList<D
   std::vector<double> wanted(n);
   for (std::size_t i = 0; i < n; ++i) {
     wanted[i] = target(p.position[i]);
-    require(std::isfinite(wanted[i]) && wanted[i] > 0, "calibrate_mass_to_density: the target density at particle " +
-                                                            show(i) + " is " + show(wanted[i]) +
-                                                            " (must be positive)");
+    require(std::isfinite(wanted[i]) && wanted[i] > 0,
+            "calibrate_mass_to_density: the target density at particle " + show(i) + " is " +
+                show(wanted[i]) + " (must be positive)");
   }
   // The largest relative error of the current density, and where it is.
   auto worst = [&](MassCalibration& report) {
@@ -397,11 +417,14 @@ MassCalibration calibrate_mass_to_density(Particles<D>& p, const NeighbourList<D
 /// turns density noise into larger mass noise (chapter 2 shows it).  Needs p.density.
 template <int D>
 double calibrate_mean_density(Particles<D>& p, double target) {
-  require(std::isfinite(target) && target > 0, "calibrate_mean_density: the target must be positive");
-  require(p.density.size() == p.size() && p.size() > 0, "calibrate_mean_density: compute the density first");
+  require(std::isfinite(target) && target > 0,
+          "calibrate_mean_density: the target must be positive");
+  require(p.density.size() == p.size() && p.size() > 0,
+          "calibrate_mean_density: compute the density first");
   double mean = 0;
   for (double rho : p.density) mean += rho / static_cast<double>(p.size());
-  require(std::isfinite(mean) && mean > 0, "calibrate_mean_density: the mean density is not positive");
+  require(std::isfinite(mean) && mean > 0,
+          "calibrate_mean_density: the mean density is not positive");
   const double factor = target / mean;
   for (double& m : p.mass) m *= factor;
   for (double& rho : p.density) rho *= factor;  // the density is linear in the masses
@@ -410,11 +433,12 @@ double calibrate_mean_density(Particles<D>& p, double target) {
 
 /// The same with one target density everywhere.
 template <int D, class K = Kernel<D>>
-MassCalibration calibrate_mass_to_density(Particles<D>& p, const NeighbourList<D>& list, double target,
-                                          DensityForm form = DensityForm::selhammar(), int max_iterations = 100,
-                                          double tolerance = 1e-13) {
-  return calibrate_mass_to_density<D, K>(p, list, [target](const Vec<D>&) { return target; }, form,
-                                         max_iterations, tolerance);
+MassCalibration calibrate_mass_to_density(Particles<D>& p, const NeighbourList<D>& list,
+                                          double target,
+                                          DensityForm form = DensityForm::selhammar(),
+                                          int max_iterations = 100, double tolerance = 1e-13) {
+  return calibrate_mass_to_density<D, K>(
+      p, list, [target](const Vec<D>&) { return target; }, form, max_iterations, tolerance);
 }
 
 }  // namespace sph

@@ -42,9 +42,9 @@ struct Leapfrog {
     const std::size_t n = p.size();
     velocity_half_.resize(n);
     if constexpr (energy) energy_half_.resize(n);
-    // The first half kick to v^{n+1/2} (kept in velocity_half_), the drift, and the prediction
-    // v^{n+1/2} + a^n dt/2 that the forces at the end of the step see (left in p.velocity);
-    // the same for u.  One pass over the particles.
+      // The first half kick to v^{n+1/2} (kept in velocity_half_), the drift, and the prediction
+      // v^{n+1/2} + a^n dt/2 that the forces at the end of the step see (left in p.velocity);
+      // the same for u.  One pass over the particles.
 #pragma omp parallel for schedule(static) if (n >= parallel_threshold)
     for (std::size_t i = 0; i < n; ++i) {
       if (!sim.moves(i)) {
@@ -127,7 +127,7 @@ struct PredictorCorrector {
     position_.resize(n);
     velocity_.resize(n);
     if constexpr (energy) energy_.resize(n);
-    // Predict the midpoint state (the start of the step kept aside).
+      // Predict the midpoint state (the start of the step kept aside).
 #pragma omp parallel for schedule(static) if (n >= parallel_threshold)
     for (std::size_t i = 0; i < n; ++i) {
       position_[i] = p.position[i];

@@ -151,9 +151,9 @@ struct LagrangianOptions {
   LagrangianEnd left = LagrangianEnd::free;
   LagrangianEnd right = LagrangianEnd::free;
   LagrangianViscosity viscosity{};
-  bool self_gravity = false;            ///< spherical geometry only
-  double gravitational_constant = 1.0;  ///< G
-  double courant = 0.3;                 ///< C of the time step
+  bool self_gravity = false;                                ///< spherical geometry only
+  double gravitational_constant = 1.0;                      ///< G
+  double courant = 0.3;                                     ///< C of the time step
   double max_dt = std::numeric_limits<double>::infinity();  ///< a bound on every step
   long max_steps = 10'000'000;  ///< run_until throws when one call would need more
 };
@@ -161,8 +161,8 @@ struct LagrangianOptions {
 /// The state at one time, zone by zone (at zone centres) and node by node.
 struct LagrangianProfile {
   double time = 0;
-  std::vector<double> radius;            ///< zone centre, the midpoint of its two nodes
-  std::vector<double> mass_coordinate;   ///< mass inside the zone centre (half its own)
+  std::vector<double> radius;           ///< zone centre, the midpoint of its two nodes
+  std::vector<double> mass_coordinate;  ///< mass inside the zone centre (half its own)
   std::vector<double> density;
   std::vector<double> pressure;
   std::vector<double> internal_energy;   ///< e, per unit mass
@@ -197,9 +197,12 @@ template <class F>
 decltype(auto) with_geometry(LagrangianGeometry g, F&& f) {
   using G = LagrangianGeometry;
   switch (g) {
-    case G::planar: return f(std::integral_constant<G, G::planar>{});
-    case G::cylindrical: return f(std::integral_constant<G, G::cylindrical>{});
-    case G::spherical: break;
+    case G::planar:
+      return f(std::integral_constant<G, G::planar>{});
+    case G::cylindrical:
+      return f(std::integral_constant<G, G::cylindrical>{});
+    case G::spherical:
+      break;
   }
   return f(std::integral_constant<G, G::spherical>{});
 }
@@ -215,8 +218,8 @@ inline double area(LagrangianGeometry g, double r) {
 /// sub-intervals (exact for polynomials of degree 9 on each); f is never called at a or b.
 template <class F>
 double integrate_over_volume(LagrangianGeometry g, double a, double b, int pieces, F&& f) {
-  static constexpr double x[5] = {0.0, -0.5384693101056831, 0.5384693101056831,
-                                  -0.9061798459386640, 0.9061798459386640};
+  static constexpr double x[5] = {0.0, -0.5384693101056831, 0.5384693101056831, -0.9061798459386640,
+                                  0.9061798459386640};
   static constexpr double w[5] = {0.5688888888888889, 0.4786286704993665, 0.4786286704993665,
                                   0.2369268850561891, 0.2369268850561891};
   const double h = (b - a) / pieces;
@@ -235,16 +238,19 @@ double integrate_over_volume(LagrangianGeometry g, double a, double b, int piece
 inline double positive_value(const std::function<double(double)>& f, double r, const char* what) {
   const double value = f(r);
   if (!(std::isfinite(value) && value > 0.0))
-    throw Error(std::string("Lagrangian1D: ") + what + " = " + show(value) + " at r = " +
-                show(r) + " (must be positive and finite)");
+    throw Error(std::string("Lagrangian1D: ") + what + " = " + show(value) + " at r = " + show(r) +
+                " (must be positive and finite)");
   return value;
 }
 
 inline const char* name(LagrangianEnd end) {
   switch (end) {
-    case LagrangianEnd::free: return "free";
-    case LagrangianEnd::wall: return "wall";
-    case LagrangianEnd::centre: break;
+    case LagrangianEnd::free:
+      return "free";
+    case LagrangianEnd::wall:
+      return "wall";
+    case LagrangianEnd::centre:
+      break;
   }
   return "centre";
 }
@@ -276,8 +282,12 @@ class Lagrangian1D {
   Lagrangian1D(Geometry geometry, std::vector<double> node_radius,
                std::vector<double> node_velocity, std::vector<double> zone_mass,
                std::vector<double> zone_energy, const LagrangianOptions& options = {})
-      : geometry_(geometry), options_(options), r_(std::move(node_radius)),
-        u_(std::move(node_velocity)), m_(std::move(zone_mass)), e_(std::move(zone_energy)) {
+      : geometry_(geometry),
+        options_(options),
+        r_(std::move(node_radius)),
+        u_(std::move(node_velocity)),
+        m_(std::move(zone_mass)),
+        e_(std::move(zone_energy)) {
     validate();
     const std::size_t N = m_.size();
     node_mass_.assign(N + 1, 0.0);
@@ -294,8 +304,8 @@ class Lagrangian1D {
     fixed_left_ = options_.left != End::free;
     fixed_right_ = options_.right != End::free;
     for (auto* v : {&Pi_, &c_, &Pi_half_, &c_half_, &e_half_, &e_new_}) v->assign(N, 0.0);
-    for (auto* v : {&A_, &F_, &a_, &r_half_, &u_half_, &A_half_, &F_half_, &r_new_, &u_new_,
-                    &u_bar_})
+    for (auto* v :
+         {&A_, &F_, &a_, &r_half_, &u_half_, &A_half_, &F_half_, &r_new_, &u_new_, &u_bar_})
       v->assign(N + 1, 0.0);
   }
 
@@ -331,8 +341,8 @@ class Lagrangian1D {
   static std::vector<double> uniform_edges(double r_min, double r_max, int zones) {
     require(zones >= 1, "Lagrangian1D: uniform_edges needs at least 1 zone, got " + show(zones));
     require(std::isfinite(r_min) && std::isfinite(r_max) && r_max > r_min,
-            "Lagrangian1D: uniform_edges needs finite r_min < r_max, got [" + show(r_min) +
-                ", " + show(r_max) + "]");
+            "Lagrangian1D: uniform_edges needs finite r_min < r_max, got [" + show(r_min) + ", " +
+                show(r_max) + "]");
     std::vector<double> edges(zones + 1);
     for (int k = 0; k <= zones; ++k) edges[k] = r_min + (r_max - r_min) * k / zones;
     edges[zones] = r_max;
@@ -424,9 +434,9 @@ class Lagrangian1D {
   /// each step.  Returns the number of steps; throws sph::Error if it would take more than
   /// options().max_steps.
   long run_until(double t_end, const Callback& after_step = {}) {
-    require(std::isfinite(t_end) && t_end >= time_,
-            "Lagrangian1D: run_until(" + show(t_end) + ") from t = " + show(time_) +
-                " (must be finite and not in the past)");
+    require(std::isfinite(t_end) && t_end >= time_, "Lagrangian1D: run_until(" + show(t_end) +
+                                                        ") from t = " + show(time_) +
+                                                        " (must be finite and not in the past)");
     long taken = 0;
     while (time_ < t_end) {
       if (taken >= options_.max_steps)
@@ -471,9 +481,7 @@ class Lagrangian1D {
   double density(std::size_t i) const { return m_[i] / volume(i); }
   double pressure(std::size_t i) const { return (gamma() - 1.0) * density(i) * e_[i]; }
   double internal_energy(std::size_t i) const { return e_[i]; }
-  double sound_speed(std::size_t i) const {
-    return std::sqrt(gamma() * (gamma() - 1.0) * e_[i]);
-  }
+  double sound_speed(std::size_t i) const { return std::sqrt(gamma() * (gamma() - 1.0) * e_[i]); }
   /// q of zone i for the current velocities.
   double viscous_pressure(std::size_t i) const {
     return viscosity(density(i), sound_speed(i), velocity_jump(r_, u_, i));
@@ -539,8 +547,8 @@ class Lagrangian1D {
     using lagrangian_detail::count;
     for (std::size_t k = 0; k < r.size(); ++k) {
       if (!std::isfinite(r[k]))
-        throw Error("Lagrangian1D: node " + count(k) + " position is not finite (" +
-                    show(r[k]) + ")");
+        throw Error("Lagrangian1D: node " + count(k) + " position is not finite (" + show(r[k]) +
+                    ")");
       if (k > 0 && !(r[k] > r[k - 1]))
         throw Error("Lagrangian1D: node positions must increase: node " + count(k) +
                     " at r = " + show(r[k]) + " is not beyond node " + count(k - 1) +
@@ -548,7 +556,8 @@ class Lagrangian1D {
     }
     require(geometry == Geometry::planar || r.front() >= 0.0,
             "Lagrangian1D: a cylindrical or spherical mesh needs r >= 0, the first node is at "
-            "r = " + show(r.front()));
+            "r = " +
+                show(r.front()));
   }
 
   void validate() const {
@@ -588,16 +597,19 @@ class Lagrangian1D {
     }
     for (std::size_t k = 0; k <= N; ++k)
       if (!std::isfinite(u_[k]))
-        throw Error("Lagrangian1D: node " + count(k) + " velocity is not finite (" +
-                    show(u_[k]) + ")");
+        throw Error("Lagrangian1D: node " + count(k) + " velocity is not finite (" + show(u_[k]) +
+                    ")");
     require(o.right != End::centre, "Lagrangian1D: the centre can only be the left end");
     if (o.left == End::centre)
-      require(r_.front() == 0.0, "Lagrangian1D: the left end is the centre, so the first node "
-                                 "must be at r = 0, not " + show(r_.front()));
+      require(r_.front() == 0.0,
+              "Lagrangian1D: the left end is the centre, so the first node "
+              "must be at r = 0, not " +
+                  show(r_.front()));
     if (geometry_ != Geometry::planar && r_.front() == 0.0)
       require(o.left == End::centre,
               std::string("Lagrangian1D: a curved mesh that starts at r = 0 needs the centre "
-                          "as its left end, not a ") + lagrangian_detail::name(o.left) + " end");
+                          "as its left end, not a ") +
+                  lagrangian_detail::name(o.left) + " end");
     const auto at_rest = [&](End end, std::size_t k, const char* side) {
       if (end != End::free)
         require(u_[k] == 0.0, std::string("Lagrangian1D: the ") + side + " end is a " +
@@ -632,7 +644,7 @@ class Lagrangian1D {
     const double g1 = gamma() - 1.0, gg1 = gamma() * g1;
     const auto [cq2, cl] = viscosity_coefficients();
     const std::size_t N = m_.size();
-    const double *rk = r.data(), *uk = u.data(), *ei = e.data(), *mi = m_.data();
+    const double *rk = r.data(), *ei = e.data(), *mi = m_.data();
     double *Pi_i = Pi.data(), *ci = c.data();
     for (std::size_t i = 0; i < N; ++i) {
       const double rho = mi[i] / lagrangian_detail::volume<G>(rk[i], rk[i + 1]);
@@ -718,8 +730,8 @@ class Lagrangian1D {
 
   [[noreturn]] void fail(const std::string& what, const char* stage, double dt) const {
     throw Error("Lagrangian1D: " + what + " " + stage + " from t = " + show(time_) +
-                " to t = " + show(time_ + dt) + " (step " + show(steps_ + 1) + ", dt = " +
-                show(dt) + "); the state is left at t = " + show(time_));
+                " to t = " + show(time_ + dt) + " (step " + show(steps_ + 1) +
+                ", dt = " + show(dt) + "); the state is left at t = " + show(time_));
   }
 
   /// Every zone of the trial state (r, u, e) has a positive volume and e >= 0, every number
@@ -751,7 +763,8 @@ class Lagrangian1D {
     for (std::size_t i = 0; i < m_.size(); ++i) {
       if (!(r[i + 1] > r[i]))
         fail(zone(i) + " inverted: negative volume, its nodes moved to r = " + show(r[i]) +
-                 " and " + show(r[i + 1]), stage, dt);
+                 " and " + show(r[i + 1]),
+             stage, dt);
       if (!(e[i] >= 0.0))
         fail(zone(i) + " has negative internal energy e = " + show(e[i]), stage, dt);
     }

@@ -33,9 +33,11 @@ class LocalMotion {
  public:
   /// Bound |d_i - d_j| for every pair closer than (at least) `cell_size` now.  `x` are the
   /// current positions (wrapped into the box on periodic axes), d[a][i] the displacements.
-  void build(const std::vector<Vec<D>>& x, const Box<D>& box, const std::array<const double*, D>& d, double cell_size) {
+  void build(const std::vector<Vec<D>>& x, const Box<D>& box, const std::array<const double*, D>& d,
+             double cell_size) {
     require(!x.empty(), "local motion: no particles");
-    require(std::isfinite(cell_size) && cell_size > 0, "local motion: the cell size must be positive and finite");
+    require(std::isfinite(cell_size) && cell_size > 0,
+            "local motion: the cell size must be positive and finite");
     const std::size_t n = x.size();
     set_geometry(x, box, cell_size);
     const std::size_t cells = total_cells();
@@ -102,7 +104,8 @@ class LocalMotion {
     std::vector<double> least(total_cells(), std::numeric_limits<double>::infinity());
     const std::size_t n = cell_of_.size();
     for (std::size_t i = 0; i < n; ++i) least[cell_of_[i]] = std::min(least[cell_of_[i]], value[i]);
-    for (int axis = 0; axis < D; ++axis) widen_along(least, axis, [](double u, double v) { return std::min(u, v); });
+    for (int axis = 0; axis < D; ++axis)
+      widen_along(least, axis, [](double u, double v) { return std::min(u, v); });
     out.resize(n);
 #pragma omp parallel for schedule(static) if (n >= parallel_threshold)
     for (std::size_t i = 0; i < n; ++i) out[i] = least[cell_of_[i]];
@@ -134,8 +137,8 @@ class LocalMotion {
       // (far off, jump by the factor that would fit if the cells shrank alike on every axis)
       target *= total > 1e3 * max_cells ? std::pow(total / max_cells, 1.0 / D) : 1.25;
     }
-    throw Error("local motion: no cell size fits particles spread from " + to_string<D>(lo) + " to " + to_string<D>(hi) +
-                " (a position far from the others?)");
+    throw Error("local motion: no cell size fits particles spread from " + to_string<D>(lo) +
+                " to " + to_string<D>(hi) + " (a position far from the others?)");
   }
 
   // Replace every cell's value by `pick` (the min or the max) of it and its two neighbours
@@ -153,7 +156,8 @@ class LocalMotion {
     for (std::size_t outer = 0; outer < cells; outer += line) {
       for (std::size_t inner = 0; inner < stride; ++inner) {
         const std::size_t base = outer + inner;
-        for (int k = 0; k < n; ++k) row[static_cast<std::size_t>(k)] = value[base + static_cast<std::size_t>(k) * stride];
+        for (int k = 0; k < n; ++k)
+          row[static_cast<std::size_t>(k)] = value[base + static_cast<std::size_t>(k) * stride];
         for (int k = 0; k < n; ++k) {
           double v = row[static_cast<std::size_t>(k)];
           for (int s : {-1, 1}) {

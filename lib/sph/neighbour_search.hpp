@@ -254,7 +254,8 @@ class NeighbourSearch {
       const CandidateSpan found = span_of(all, 0, all.size());
       const bool settled = [&] {
         switch (rule.mode) {
-          case SmoothingLengthRule::Mode::fixed: return true;
+          case SmoothingLengthRule::Mode::fixed:
+            return true;
           case SmoothingLengthRule::Mode::neighbour_number:
             return settle_by_count<K>(rule, radius, found, h, shell_count_[i]);
           case SmoothingLengthRule::Mode::density:
@@ -284,8 +285,7 @@ class NeighbourSearch {
       radius *= 1.5;
     }
     throw Error("particle " + show(i) + " at " + to_string<D>(p.position[i]) +
-                ": no smoothing length found (search radius grew to " + show(radius) +
-                ")");
+                ": no smoothing length found (search radius grew to " + show(radius) + ")");
   }
 
   // Drop the candidates at or beyond `radius` (keeping the order of the rest).
@@ -353,7 +353,7 @@ class NeighbourSearch {
       if (block.r2.size() < count) block.r2.resize(2 * count);
       double* r2 = block.r2.data();
       const Image own = wrapped_[i];
-#pragma omp simd simdlen(8) if(simd : D > 1)
+#pragma omp simd simdlen(8) if (simd : D > 1)
       for (std::size_t e = 0; e < count; ++e) {
         const Image image =
             wrapped ? subtract_images(add_images(pairs[e].image, own), wrapped[pairs[e].index])
@@ -376,9 +376,8 @@ class NeighbourSearch {
   void require_neighbours(const Particles<D>& p) const {
     for (std::size_t i = 0; i < p.size(); ++i) {
       if (list_.of(i).empty()) {
-        throw Error(
-            "particle " + show(i) + " at " + to_string<D>(p.position[i]) +
-            " has no neighbours within 2h = " + show(K::support * p.smoothing_length[i]));
+        throw Error("particle " + show(i) + " at " + to_string<D>(p.position[i]) +
+                    " has no neighbours within 2h = " + show(K::support * p.smoothing_length[i]));
       }
     }
   }
@@ -392,7 +391,8 @@ class NeighbourSearch {
     list_.first_.resize(n);
     list_.count_.resize(n);
     std::size_t entries = 0, lonely = n;
-#pragma omp parallel for schedule(dynamic, 1) reduction(+ : entries) reduction(min : lonely) if (blocks_.size() > 1)
+#pragma omp parallel for schedule(dynamic, 1) reduction(+ : entries) reduction(min : lonely) \
+    if (blocks_.size() > 1)
     for (std::size_t t = 0; t < blocks_.size(); ++t) {
       const Block& b = blocks_[t];
       for (std::size_t i = b.begin; i < b.end; ++i) {
@@ -450,18 +450,20 @@ class NeighbourSearch {
   bool reusable_ = false;
   Box<D> built_box_;
   SmoothingLengthRule::Mode built_mode_ = SmoothingLengthRule::Mode::fixed;
-  std::vector<Vec<D>> previous_position_;         // positions at the last update
-  std::array<std::vector<double>, D> unwrapped_;  // position at the full search + displacements since
-  std::array<std::vector<double>, D> epoch_;      // unwrapped position at the start of the epoch
-  std::array<std::vector<double>, D> moved_;      // displacement since the epoch
-  std::vector<Image> wrapped_;  // periods between unwrapped and stored position, packed like an image
+  std::vector<Vec<D>> previous_position_;  // positions at the last update
+  std::array<std::vector<double>, D>
+      unwrapped_;                             // position at the full search + displacements since
+  std::array<std::vector<double>, D> epoch_;  // unwrapped position at the start of the epoch
+  std::array<std::vector<double>, D> moved_;  // displacement since the epoch
+  std::vector<Image>
+      wrapped_;  // periods between unwrapped and stored position, packed like an image
   bool any_wrapped_ = false;
   LocalMotion<D> motion_;
   std::vector<double> h_floor_;    // the smallest h near each particle (find_reverse)
   std::vector<double> farthest2_;  // the largest r_ij^2 among each particle's kept pairs
   long searches_ = 0, full_searches_ = 0, reuses_ = 0, particle_searches_ = 0;
   std::vector<std::size_t> received_;  // assemble_list: one-sided pairs per receiving particle
-  std::vector<Neighbour> side_;  // the pairs of particles that receive one-sided ones
+  std::vector<Neighbour> side_;        // the pairs of particles that receive one-sided ones
   // Neighbour-number rule: the count a lattice shell forced on each particle (-1: none), and
   // the rule it was forced under.
   std::vector<int> shell_count_;

@@ -36,15 +36,17 @@ namespace sph {
 
 /// Which particles enter a norm: an interval on one axis and, optionally, a mask.
 struct Selection {
-  int axis = 0;                                                ///< axis of the interval
-  double lower = -std::numeric_limits<double>::infinity();     ///< closed interval [lower, upper]
+  int axis = 0;                                             ///< axis of the interval
+  double lower = -std::numeric_limits<double>::infinity();  ///< closed interval [lower, upper]
   double upper = std::numeric_limits<double>::infinity();
   std::vector<bool> mask;  ///< if not empty: particle i is selected only if mask[i]
 
   /// Every particle.
   static Selection all() { return {}; }
   /// Particles with lower <= x[axis] <= upper.
-  static Selection range(double lower, double upper, int axis = 0) { return {axis, lower, upper, {}}; }
+  static Selection range(double lower, double upper, int axis = 0) {
+    return {axis, lower, upper, {}};
+  }
   /// Particles whose mask entry is true.
   static Selection masked(std::vector<bool> mask) {
     Selection s;
@@ -74,12 +76,12 @@ struct Selection {
 
 /// The three norms of one quantity, and where the worst error sits.
 struct ErrorNorms {
-  std::string quantity;        ///< e.g. "density"
+  std::string quantity;  ///< e.g. "density"
   double L1 = 0, L2 = 0, Linf = 0;
-  std::size_t count = 0;       ///< particles in the selection
-  std::size_t worst_index = 0; ///< the particle with |f_i - f_ref| = L_inf
-  double worst_value = 0;      ///< its value f_i
-  double worst_reference = 0;  ///< and its reference value
+  std::size_t count = 0;        ///< particles in the selection
+  std::size_t worst_index = 0;  ///< the particle with |f_i - f_ref| = L_inf
+  double worst_value = 0;       ///< its value f_i
+  double worst_reference = 0;   ///< and its reference value
 
   /// "density: L1 = 1.2e-03, L2 = 3.4e-03, Linf = 5.6e-02 at particle 17 (0.51 vs 0.45), N = 400"
   std::string summary() const {
@@ -106,8 +108,8 @@ struct Tolerance {
 /// The x-component (or any axis) of a vector field, as the values of a norm.
 template <int D>
 std::vector<double> component(const std::vector<Vec<D>>& field, int axis) {
-  require(axis >= 0 && axis < D, "component: axis " + show(axis) + " in " +
-                                     show(D) + " dimensions");
+  require(axis >= 0 && axis < D,
+          "component: axis " + show(axis) + " in " + show(D) + " dimensions");
   std::vector<double> values(field.size());
   for (std::size_t i = 0; i < field.size(); ++i) values[i] = field[i][axis];
   return values;
@@ -119,15 +121,13 @@ namespace norms_detail {
 template <int D>
 void require_finite_values(const std::string& quantity, const std::vector<Vec<D>>& position,
                            const std::vector<double>& value, const Selection& selection) {
-  require(position.size() == value.size(),
-          quantity + ": " + show(value.size()) + " values for " +
-              show(position.size()) + " positions");
+  require(position.size() == value.size(), quantity + ": " + show(value.size()) + " values for " +
+                                               show(position.size()) + " positions");
   require(selection.mask.empty() || selection.mask.size() == value.size(),
-          quantity + ": selection mask has " + show(selection.mask.size()) +
-              " entries for " + show(value.size()) + " particles");
+          quantity + ": selection mask has " + show(selection.mask.size()) + " entries for " +
+              show(value.size()) + " particles");
   require(selection.axis >= 0 && selection.axis < D,
-          quantity + ": selection axis " + show(selection.axis) + " in " +
-              show(D) + " dimensions");
+          quantity + ": selection axis " + show(selection.axis) + " in " + show(D) + " dimensions");
   for (std::size_t i = 0; i < value.size(); ++i) {
     require(std::isfinite(value[i]), quantity + ": particle " + show(i) + " at " +
                                          to_string<D>(position[i]) + " has value " +
@@ -137,15 +137,17 @@ void require_finite_values(const std::string& quantity, const std::vector<Vec<D>
 
 /// The reference at particle i, checked to be finite.
 template <int D, class Reference>
-double reference_at(const std::string& quantity, std::size_t i, const Vec<D>& x, Reference& reference) {
+double reference_at(const std::string& quantity, std::size_t i, const Vec<D>& x,
+                    Reference& reference) {
   const double r = reference(x);
-  require(std::isfinite(r), quantity + ": the reference is " + show(r) + " at particle " +
-                                show(i) + " at " + to_string<D>(x));
+  require(std::isfinite(r), quantity + ": the reference is " + show(r) + " at particle " + show(i) +
+                                " at " + to_string<D>(x));
   return r;
 }
 
 /// Error if nothing is selected.
-inline void require_selected(const std::string& quantity, std::size_t count, const Selection& selection) {
+inline void require_selected(const std::string& quantity, std::size_t count,
+                             const Selection& selection) {
   require(count > 0, quantity + ": no particles selected (" + selection.describe() + ")");
 }
 

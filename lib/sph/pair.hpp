@@ -17,12 +17,12 @@ namespace sph {
 template <int D>
 struct Pair {
   std::size_t i = 0, j = 0;
-  Vec<D> r_ij;       ///< r_i - r_j (periodic image taken into account)
-  Vec<D> v_ij;       ///< v_i - v_j
-  double r2 = 0;     ///< |r_ij|^2
-  double r = 0;      ///< |r_ij|
-  double rv = 0;     ///< r_ij . v_ij  (negative when approaching)
-  double h_bar = 0;  ///< (h_i + h_j) / 2
+  Vec<D> r_ij;          ///< r_i - r_j (periodic image taken into account)
+  Vec<D> v_ij;          ///< v_i - v_j
+  double r2 = 0;        ///< |r_ij|^2
+  double r = 0;         ///< |r_ij|
+  double rv = 0;        ///< r_ij . v_ij  (negative when approaching)
+  double h_bar = 0;     ///< (h_i + h_j) / 2
   double support2 = 0;  ///< (support * h_bar)^2: the pair is inside the kernel when r2 < support2
   double gradient_factor = 0;  ///< g with grad_i W(r_ij, h_bar) = g r_ij
 };

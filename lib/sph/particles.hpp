@@ -32,8 +32,9 @@ struct Particles {
   std::vector<Vec<D>> position;  ///< r_i; drifted by the integrator
   std::vector<Vec<D>> velocity;  ///< v_i; kicked by the integrator
   std::vector<double> mass;      ///< m_i; constant
-  std::vector<double> internal_energy;  ///< u_i, thermal energy per unit mass; kicked by the integrator
-  std::vector<ParticleKind> kind;       ///< fluid (moves) or fixed boundary; constant
+  std::vector<double>
+      internal_energy;             ///< u_i, thermal energy per unit mass; kicked by the integrator
+  std::vector<ParticleKind> kind;  ///< fluid (moves) or fixed boundary; constant
 
   // --- written by the smoothing-length pass ------------------------------------------------
   std::vector<double> smoothing_length;  ///< h_i; kernel support is 2 h_i
@@ -47,8 +48,8 @@ struct Particles {
   std::vector<double> sound_speed;  ///< c_i
 
   // --- written by the force pass ------------------------------------------------------------
-  std::vector<Vec<D>> acceleration;     ///< dv_i/dt
-  std::vector<double> energy_rate;      ///< du_i/dt (gases that evolve their energy)
+  std::vector<Vec<D>> acceleration;  ///< dv_i/dt
+  std::vector<double> energy_rate;   ///< du_i/dt (gases that evolve their energy)
 
   std::size_t size() const { return position.size(); }
 
@@ -85,15 +86,19 @@ struct Particles {
   /// non-negative finite internal energy.  Throws sph::Error naming the first bad particle.
   void validate() const {
     require(size() > 0, "particles: the set is empty");
-    require(kind.size() == size(), "particles: the kind array has " + show(kind.size()) + " entries for " +
-                                       show(size()) + " particles (use resize() or add())");
+    require(kind.size() == size(), "particles: the kind array has " + show(kind.size()) +
+                                       " entries for " + show(size()) +
+                                       " particles (use resize() or add())");
     for (std::size_t i = 0; i < size(); ++i) {
-      const bool good = position[i].allFinite() && velocity[i].allFinite() && std::isfinite(mass[i]) &&
-                        mass[i] > 0 && std::isfinite(internal_energy[i]) && internal_energy[i] >= 0;
+      const bool good = position[i].allFinite() && velocity[i].allFinite() &&
+                        std::isfinite(mass[i]) && mass[i] > 0 &&
+                        std::isfinite(internal_energy[i]) && internal_energy[i] >= 0;
       if (good) continue;
       const std::string who = "particle " + show(i);
-      require(position[i].allFinite(), who + " has a non-finite position " + to_string<D>(position[i]));
-      require(velocity[i].allFinite(), who + " has a non-finite velocity " + to_string<D>(velocity[i]));
+      require(position[i].allFinite(),
+              who + " has a non-finite position " + to_string<D>(position[i]));
+      require(velocity[i].allFinite(),
+              who + " has a non-finite velocity " + to_string<D>(velocity[i]));
       require(std::isfinite(mass[i]) && mass[i] > 0,
               who + " has mass " + show(mass[i]) + " (must be positive and finite)");
       throw Error(who + " has internal energy " + show(internal_energy[i]) +

@@ -60,8 +60,8 @@ struct OrderInversions {
   /// "12738 of 79800 pairs inverted (1 adjacent), deepest 0.81 (particle 12 passed 388)".
   std::string summary() const {
     char text[200];
-    std::snprintf(text, sizeof text, "%zu of %zu pairs inverted (%zu adjacent), deepest %.3g", all, pairs(),
-                  adjacent, deepest);
+    std::snprintf(text, sizeof text, "%zu of %zu pairs inverted (%zu adjacent), deepest %.3g", all,
+                  pairs(), adjacent, deepest);
     std::string s = text;
     if (all > 0) s += " (particle " + show(deepest_behind) + " passed " + show(deepest_ahead) + ")";
     return s;
@@ -71,8 +71,8 @@ struct OrderInversions {
 namespace penetration_detail {
 
 /// Sort s[lo, hi) ascending and return the number of pairs k < l with s[k] > s[l].
-inline std::size_t count_inversions(std::vector<double>& s, std::vector<double>& buffer, std::size_t lo,
-                                    std::size_t hi) {
+inline std::size_t count_inversions(std::vector<double>& s, std::vector<double>& buffer,
+                                    std::size_t lo, std::size_t hi) {
   if (hi - lo < 2) return 0;
   const std::size_t mid = lo + (hi - lo) / 2;
   std::size_t count = count_inversions(s, buffer, lo, mid) + count_inversions(s, buffer, mid, hi);
@@ -88,7 +88,8 @@ inline std::size_t count_inversions(std::vector<double>& s, std::vector<double>&
   }
   while (a < mid) buffer[out++] = s[a++];
   while (b < hi) buffer[out++] = s[b++];
-  std::copy(buffer.begin() + static_cast<std::ptrdiff_t>(lo), buffer.begin() + static_cast<std::ptrdiff_t>(hi),
+  std::copy(buffer.begin() + static_cast<std::ptrdiff_t>(lo),
+            buffer.begin() + static_cast<std::ptrdiff_t>(hi),
             s.begin() + static_cast<std::ptrdiff_t>(lo));
   return count;
 }
@@ -99,12 +100,13 @@ inline std::size_t count_inversions(std::vector<double>& s, std::vector<double>&
 /// particles, same indices).  sph::Error if the sizes differ, the axis does not exist or a
 /// position is not finite.
 template <int D>
-OrderInversions order_inversions(const std::vector<Vec<D>>& initial, const std::vector<Vec<D>>& now, const Box<D>& box,
-                                 int axis = 0) {
+OrderInversions order_inversions(const std::vector<Vec<D>>& initial, const std::vector<Vec<D>>& now,
+                                 const Box<D>& box, int axis = 0) {
   require(initial.size() == now.size(), "order inversions: " + show(initial.size()) +
-                                            " initial positions for " + show(now.size()) + " particles");
-  require(axis >= 0 && axis < D, "order inversions: axis " + show(axis) + " in " + show(D) +
-                                     " dimensions");
+                                            " initial positions for " + show(now.size()) +
+                                            " particles");
+  require(axis >= 0 && axis < D,
+          "order inversions: axis " + show(axis) + " in " + show(D) + " dimensions");
   const std::size_t n = now.size();
   // Unwrapped present coordinates along the axis.
   std::vector<double> present(n);

@@ -87,25 +87,27 @@ inline DensityScatter density_scatter(const std::vector<double>& density) {
 /// Parameters of relax_to_uniform_density.
 struct RelaxOptions {
   SmoothingLengthRule rule = SmoothingLengthRule::fixed();  ///< how h is chosen each iteration
-  DensityForm form = DensityForm::watkins();                ///< the density sum whose scatter is minimised
-  double gamma = 2.0;          ///< the exponent of the relaxing pressure \f$ P \propto \rho^\gamma \f$
-  double step = 0.2;           ///< \f$ \epsilon \f$: displacement per iteration is \f$ \epsilon h^2 \mathbf a \f$
-  double momentum = 0.5;       ///< \f$ \mu \f$ in [0, 1): 0 is plain gradient descent
-  double max_move = 0.1;       ///< largest displacement per iteration, in units of h
-  double skin = 0.2;           ///< fixed h: neighbour list for radius (1 + skin) 2h, rebuilt after moves of skin h
-  int max_iterations = 2000;   ///< give up after this many iterations
-  int patience = 20;           ///< stop when no relative improvement of min_improvement in this many
+  DensityForm form = DensityForm::watkins();  ///< the density sum whose scatter is minimised
+  double gamma = 2.0;  ///< the exponent of the relaxing pressure \f$ P \propto \rho^\gamma \f$
+  double step =
+      0.2;  ///< \f$ \epsilon \f$: displacement per iteration is \f$ \epsilon h^2 \mathbf a \f$
+  double momentum = 0.5;  ///< \f$ \mu \f$ in [0, 1): 0 is plain gradient descent
+  double max_move = 0.1;  ///< largest displacement per iteration, in units of h
+  double skin =
+      0.2;  ///< fixed h: neighbour list for radius (1 + skin) 2h, rebuilt after moves of skin h
+  int max_iterations = 2000;  ///< give up after this many iterations
+  int patience = 20;          ///< stop when no relative improvement of min_improvement in this many
   double min_improvement = 0.01;
 };
 
 /// What relax_to_uniform_density did.
 struct RelaxReport {
-  int iterations = 0;                   ///< iterations performed (each: search, density, move)
-  DensityScatter initial;               ///< scatter of the starting set
-  DensityScatter final;                 ///< scatter of the returned (best) set, its p.density
-  std::vector<double> history;          ///< \f$ \sigma_\rho/\bar\rho \f$ at every iteration
-  bool converged = false;               ///< stopped because the scatter stopped decreasing
-  int list_builds = 0;                  ///< neighbour searches with the enlarged radius (fixed h)
+  int iterations = 0;           ///< iterations performed (each: search, density, move)
+  DensityScatter initial;       ///< scatter of the starting set
+  DensityScatter final;         ///< scatter of the returned (best) set, its p.density
+  std::vector<double> history;  ///< \f$ \sigma_\rho/\bar\rho \f$ at every iteration
+  bool converged = false;       ///< stopped because the scatter stopped decreasing
+  int list_builds = 0;          ///< neighbour searches with the enlarged radius (fixed h)
 };
 
 /// The per-particle factor \f$ B_i = P_i/\rho_i^2 \f$ of the relaxing force, with
@@ -140,8 +142,8 @@ std::pair<double, double> steepest_slope() {
 /// kernel falls to zero as \f$ r \to 0 \f$, so two particles that start close together would
 /// barely repel and stay paired.
 template <int D, class K>
-Vec<D> relaxing_acceleration(const Particles<D>& p, const NeighbourList<D>& list, const std::vector<double>& factor,
-                             std::size_t i) {
+Vec<D> relaxing_acceleration(const Particles<D>& p, const NeighbourList<D>& list,
+                             const std::vector<double>& factor, std::size_t i) {
   const auto [q_steep, slope_steep] = steepest_slope<typename K::shape>();
   Vec<D> a = Vec<D>::Zero();
   for (const Neighbour& n : list.of(i)) {
@@ -213,19 +215,22 @@ class RelaxNeighbours {
 template <int D>
 void validate(const Box<D>& box, const RelaxOptions& options) {
   for (int a = 0; a < D; ++a) {
-    require(box.periodic[a], std::string("relax: the box must be periodic (axis ") + axis_name(a) + " is open)");
+    require(box.periodic[a],
+            std::string("relax: the box must be periodic (axis ") + axis_name(a) + " is open)");
   }
   require(options.gamma > 0, "relax: need gamma > 0");
   require(options.step > 0 && options.momentum >= 0 && options.momentum < 1 && options.max_move > 0,
           "relax: need step > 0, momentum in [0, 1) and max_move > 0");
   require(options.skin >= 0, "relax: need skin >= 0");
-  require(options.max_iterations >= 0 && options.patience >= 1, "relax: need max_iterations >= 0, patience >= 1");
+  require(options.max_iterations >= 0 && options.patience >= 1,
+          "relax: need max_iterations >= 0, patience >= 1");
 }
 
 }  // namespace relax_detail
 
 template <int D, class K = Kernel<D>>
-RelaxReport relax_to_uniform_density(Particles<D>& p, const Box<D>& box, const RelaxOptions& options = {}) {
+RelaxReport relax_to_uniform_density(Particles<D>& p, const Box<D>& box,
+                                     const RelaxOptions& options = {}) {
   relax_detail::validate(box, options);
   p.validate();
   const std::size_t n = p.size();
@@ -235,7 +240,7 @@ RelaxReport relax_to_uniform_density(Particles<D>& p, const Box<D>& box, const R
   RelaxReport report;
   std::vector<Vec<D>> best_position;  // the positions with the smallest scatter
   double best = 0;                    // the smallest scatter so far
-  int improved = 0;                   // the last iteration that improved on `best` by min_improvement
+  int improved = 0;  // the last iteration that improved on `best` by min_improvement
   for (int iteration = 0;; ++iteration) {
     // Measure: neighbours, density and its scatter.
     const NeighbourList<D>& list = neighbours.update(p, box);
@@ -245,7 +250,8 @@ RelaxReport relax_to_uniform_density(Particles<D>& p, const Box<D>& box, const R
     if (iteration == 0) report.initial = scatter;
     // Remember the best set; stop when the scatter has stopped decreasing, or at the limit.
     if (iteration == 0 || scatter.relative < best) {
-      if (iteration == 0 || scatter.relative < best * (1.0 - options.min_improvement)) improved = iteration;
+      if (iteration == 0 || scatter.relative < best * (1.0 - options.min_improvement))
+        improved = iteration;
       best = scatter.relative;
       report.final = scatter;
       best_position = p.position;
@@ -256,11 +262,13 @@ RelaxReport relax_to_uniform_density(Particles<D>& p, const Box<D>& box, const R
     }
     if (iteration == options.max_iterations) break;
     // Move: damped step along the relaxing force, limited to max_move h.
-    for (std::size_t i = 0; i < n; ++i) factor[i] = relaxing_factor(options.gamma, p.density[i], scatter.mean);
+    for (std::size_t i = 0; i < n; ++i)
+      factor[i] = relaxing_factor(options.gamma, p.density[i], scatter.mean);
 #pragma omp parallel for schedule(static) if (n >= parallel_threshold)
     for (std::size_t i = 0; i < n; ++i) {
       const double h = p.smoothing_length[i];
-      drift[i] = options.momentum * drift[i] + options.step * h * h * relaxing_acceleration<D, K>(p, list, factor, i);
+      drift[i] = options.momentum * drift[i] +
+                 options.step * h * h * relaxing_acceleration<D, K>(p, list, factor, i);
       const double length = drift[i].norm(), limit = options.max_move * h;
       if (length > limit) drift[i] *= limit / length;
     }

@@ -86,8 +86,11 @@ struct Side {
 
   Side() = default;
   Side(GasState w, double g)
-      : state(w), gamma(g), sound_speed(sph::sound_speed(w, g)),
-        A(2.0 / ((g + 1.0) * w.density)), B(w.pressure * (g - 1.0) / (g + 1.0)) {}
+      : state(w),
+        gamma(g),
+        sound_speed(sph::sound_speed(w, g)),
+        A(2.0 / ((g + 1.0) * w.density)),
+        B(w.pressure * (g - 1.0) / (g + 1.0)) {}
 
   /// f_K(p) and its derivative f_K'(p) (Toro eqs 4.6-4.7 and 4.37).  The shock branch also
   /// takes p = p_K, where both branches agree to first order; it keeps a cold side (p_K = 0)
@@ -103,7 +106,8 @@ struct Side {
     const double ratio = p / pK;
     const double z = (gamma - 1.0) / (2.0 * gamma);
     const double f = 2.0 * sound_speed / (gamma - 1.0) * (std::pow(ratio, z) - 1.0);
-    const double df = std::pow(ratio, -(gamma + 1.0) / (2.0 * gamma)) / (state.density * sound_speed);
+    const double df =
+        std::pow(ratio, -(gamma + 1.0) / (2.0 * gamma)) / (state.density * sound_speed);
     return {f, df};
   }
 
@@ -131,10 +135,12 @@ struct Side {
 inline void validate_state(const GasState& w, const char* side) {
   const std::string who = std::string("Riemann solver: ") + side + " state ";
   require(std::isfinite(w.density) && std::isfinite(w.velocity) && std::isfinite(w.pressure),
-          who + "is not finite (density " + show(w.density) + ", velocity " +
-              show(w.velocity) + ", pressure " + show(w.pressure) + ")");
-  require(w.density != 0.0, who + "has density 0: a vacuum state given as input; this solver does not "
-                                  "treat vacuum (Toro 2009 section 4.6)");
+          who + "is not finite (density " + show(w.density) + ", velocity " + show(w.velocity) +
+              ", pressure " + show(w.pressure) + ")");
+  require(w.density != 0.0,
+          who +
+              "has density 0: a vacuum state given as input; this solver does not "
+              "treat vacuum (Toro 2009 section 4.6)");
   require(w.density > 0.0, who + "has negative density " + show(w.density));
   require(w.pressure >= 0.0, who + "has negative pressure " + show(w.pressure));
 }
@@ -213,8 +219,8 @@ class RiemannSolution {
   /// The state at (x, t).  At t = 0 it is the initial data: left for x < x0, right otherwise.
   GasState sample(double x, double t) const {
     require(std::isfinite(x) && std::isfinite(t) && t >= 0.0,
-            "Riemann solution: cannot sample at x = " + show(x) + ", t = " +
-                show(t) + " (need finite x and t >= 0)");
+            "Riemann solution: cannot sample at x = " + show(x) + ", t = " + show(t) +
+                " (need finite x and t >= 0)");
     if (t == 0.0) return x < x0_ ? left_.state : right_.state;
     const double S = (x - x0_) / t;
     return S <= u_star_ ? sample_left(S) : sample_right(S);
@@ -248,7 +254,8 @@ class RiemannSolution {
     const double du = right_.state.velocity - left_.state.velocity;
     require(critical > du,
             "Riemann solver: vacuum generated: the pressure positivity condition "
-            "2/(gamma-1) (c_L + c_R) > u_R - u_L (Toro 2009 eq 4.40) fails: 2/(gamma-1) (c_L + c_R) = " +
+            "2/(gamma-1) (c_L + c_R) > u_R - u_L (Toro 2009 eq 4.40) fails: 2/(gamma-1) (c_L + "
+            "c_R) = " +
                 riemann_detail::number(critical) + " <= u_R - u_L = " + riemann_detail::number(du));
   }
 
@@ -266,8 +273,8 @@ class RiemannSolution {
     const double cL = left_.sound_speed, cR = right_.sound_speed, g = gamma_;
     const double du = R.velocity - L.velocity;
     // Primitive-variable guess (eq 4.47).
-    const double p_pv = std::max(0.0, 0.5 * (L.pressure + R.pressure) -
-                                          0.125 * du * (L.density + R.density) * (cL + cR));
+    const double p_pv = std::max(
+        0.0, 0.5 * (L.pressure + R.pressure) - 0.125 * du * (L.density + R.density) * (cL + cR));
     const double p_min = std::min(L.pressure, R.pressure), p_max = std::max(L.pressure, R.pressure);
     double guess;
     if (p_min > 0 && p_max / p_min <= 2.0 && p_pv >= p_min && p_pv <= p_max) {
@@ -381,10 +388,10 @@ class RiemannSolution {
   /// The one wave of a kind, or an error naming the pattern when there are zero or two.
   const Wave& only(WaveKind kind) const {
     const bool in_left = left_wave_.kind == kind, in_right = right_wave_.kind == kind;
-    require(in_left != in_right,
-            std::string("Riemann solution: the problem has ") + (in_left ? "two " : "no ") +
-                (kind == WaveKind::shock ? "shocks" : "rarefactions") + " (" + describe() +
-                "); use left_wave() / right_wave()");
+    require(in_left != in_right, std::string("Riemann solution: the problem has ") +
+                                     (in_left ? "two " : "no ") +
+                                     (kind == WaveKind::shock ? "shocks" : "rarefactions") + " (" +
+                                     describe() + "); use left_wave() / right_wave()");
     return in_left ? left_wave_ : right_wave_;
   }
 

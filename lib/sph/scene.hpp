@@ -36,7 +36,7 @@
 namespace sph {
 
 template <int Dim>
-  requires SupportedDimension<Dim>
+requires SupportedDimension<Dim>
 struct Scene {
   static constexpr int D = Dim;
   using Kernel = sph::Kernel<Dim>;

@@ -62,7 +62,9 @@ struct Settings {
 
 /// Which criterion set the last time step, and where.
 struct TimestepLimit {
-  std::string criterion;  ///< "Courant (eq 7)", "acceleration", "cooling", a term's or a potential's name, "output time", "fixed step"
+  /// "Courant (eq 7)", "acceleration", "cooling", a term's or a potential's name, "output time",
+  /// "fixed step"
+  std::string criterion;
   std::size_t particle = 0;
   double dt = 0;
 };
@@ -84,9 +86,10 @@ class Simulation {
   static constexpr bool hydro = TermList::count > 0;
   static constexpr bool evolve_energy = hydro && Eos::evolves_energy;
   static constexpr Needs needs = TermList::needs;
-  static_assert(TermList::template all_recognised<D>,
-                "Simulation: a term of the scene has no member the step recognises -- check its members' "
-                "signatures against the table in sph/terms.hpp");
+  static_assert(
+      TermList::template all_recognised<D>,
+      "Simulation: a term of the scene has no member the step recognises -- check its members' "
+      "signatures against the table in sph/terms.hpp");
 
   /// The particles, the box, and any of the scene's parts in any order, each by its type: the
   /// equation of state, a term, Settings, the gravity module, the external potential, the
@@ -122,7 +125,8 @@ class Simulation {
       density_pass();
       if constexpr (TermList::template any_gradient_pass<D>) gradient_pass();
       if constexpr (TermList::template any_before_force<D>) before_force();
-      compute_forces<D, K, TermList, evolve_energy>(particles_, search_.list(), view(), terms_, fields_);
+      compute_forces<D, K, TermList, evolve_energy>(particles_, search_.list(), view(), terms_,
+                                                    fields_);
       if constexpr (TermList::template any_after_force<D>) after_force();
     } else {
       std::fill(particles_.acceleration.begin(), particles_.acceleration.end(), Vec<D>::Zero());
@@ -162,7 +166,8 @@ class Simulation {
           const double h = p.smoothing_length[i];
           double signal = p.sound_speed[i];
           terms_.for_each([&](const auto& t) {
-            if constexpr (HasSignalSpeed<std::decay_t<decltype(t)>, D>) signal += t.signal_speed(i, in);
+            if constexpr (HasSignalSpeed<std::decay_t<decltype(t)>, D>)
+              signal += t.signal_speed(i, in);
           });
           if (own_speed) signal += p.velocity[i].norm();
           if (signal > 0) consider(courant * h / signal, i, "Courant (eq 7)");
@@ -179,7 +184,8 @@ class Simulation {
             if constexpr (HasTimestep<T, D>) consider(t.timestep(i, in), i, T::timestep_name);
           });
         }
-        if constexpr (External::active) consider(external_.timestep(p.position[i], courant), i, External::timestep_name);
+        if constexpr (External::active)
+          consider(external_.timestep(p.position[i], courant), i, External::timestep_name);
       }
       best[c] = b;
     }
@@ -201,7 +207,8 @@ class Simulation {
     if constexpr (Boundaries::has_constraint) {
       if (constraint_failed_ >= 0) {
         const auto i = static_cast<std::size_t>(constraint_failed_);
-        throw Error("particle " + show(i) + ": " + boundaries_.describe_failure(particles_.position[i]));
+        throw Error("particle " + show(i) + ": " +
+                    boundaries_.describe_failure(particles_.position[i]));
       }
     }
     check_energy("after the step");
@@ -216,12 +223,14 @@ class Simulation {
     require(std::isfinite(t_end), "run: the end time must be finite");
     const double span = t_end - time_;
     while (time_ < t_end) {
-      if (steps_ >= settings_.max_steps) throw Error("run: more than " + show(settings_.max_steps) + " steps");
+      if (steps_ >= settings_.max_steps)
+        throw Error("run: more than " + show(settings_.max_steps) + " steps");
       const double remaining = t_end - time_;
       const double dt = step(remaining);
       if (dt < settings_.min_timestep * span && dt < remaining) {
         throw Error("time step collapsed to " + show(dt) + " at t = " + show(time_) +
-                    " (limited by " + last_limit_.criterion + " at particle " + show(last_limit_.particle) + ")");
+                    " (limited by " + last_limit_.criterion + " at particle " +
+                    show(last_limit_.particle) + ")");
       }
       if (remaining - dt <= 1e-12 * std::abs(t_end)) time_ = t_end;  // hit the output time exactly
       if (on_step) on_step(*this);
@@ -239,7 +248,8 @@ class Simulation {
     if constexpr (Boundaries::has_constraint) {
       if (!boundaries_.constrain(particles_.position[i], velocity)) {
 #pragma omp critical(sph_constraint)
-        if (constraint_failed_ < 0 || static_cast<long>(i) < constraint_failed_) constraint_failed_ = static_cast<long>(i);
+        if (constraint_failed_ < 0 || static_cast<long>(i) < constraint_failed_)
+          constraint_failed_ = static_cast<long>(i);
       }
     }
   }
@@ -328,9 +338,10 @@ class Simulation {
     } else if constexpr (std::is_same_v<Part, Integrator>) {
       integrator_ = part;
     } else {
-      static_assert(std::is_same_v<Part, void>,
-                    "Simulation: this argument is not a part of the scene (its equation of state, one of its "
-                    "terms, Settings, its gravity, external potential, boundaries or integrator)");
+      static_assert(
+          std::is_same_v<Part, void>,
+          "Simulation: this argument is not a part of the scene (its equation of state, one of its "
+          "terms, Settings, its gravity, external potential, boundaries or integrator)");
     }
   }
 
@@ -368,7 +379,8 @@ class Simulation {
         using T = std::decay_t<decltype(t)>;
         if constexpr (HasGradientPass<T, D>) {
           typename T::template GradientSum<D> sum{};
-          for (const Neighbour& nb : list.of(i)) t.gradient_pair(sum, pair_geometry<D, K>(in, i, nb), in);
+          for (const Neighbour& nb : list.of(i))
+            t.gradient_pair(sum, pair_geometry<D, K>(in, i, nb), in);
           t.gradient_finish(i, sum, in);
         }
       });
@@ -430,11 +442,12 @@ class Simulation {
       const auto& p = particles_;
       for (std::size_t i = 0; i < p.size(); ++i) {
         if (!(p.internal_energy[i] >= 0)) {
-          throw Error(std::string("energy equation: ") + when + ", particle " + show(i) + " at " +
-                      to_string<D>(p.position[i]) + " has internal energy " + show(p.internal_energy[i]) +
-                      " at t = " + show(time_) +
-                      " (the step is too long for its cooling rate: lower the Courant factor, or use"
-                      " the exact update of a term that has one)");
+          throw Error(
+              std::string("energy equation: ") + when + ", particle " + show(i) + " at " +
+              to_string<D>(p.position[i]) + " has internal energy " + show(p.internal_energy[i]) +
+              " at t = " + show(time_) +
+              " (the step is too long for its cooling rate: lower the Courant factor, or use"
+              " the exact update of a term that has one)");
         }
       }
     }

@@ -46,8 +46,8 @@ namespace sph {
 struct SmoothingLengthRule {
   enum class Mode { fixed, neighbour_number, density };
   Mode mode = Mode::neighbour_number;
-  double neighbours = 64;  ///< target neighbour number N
-  double tolerance = 0;    ///< neighbour_number: accepted deviation ±ΔN (absolute count)
+  double neighbours = 64;           ///< target neighbour number N
+  double tolerance = 0;             ///< neighbour_number: accepted deviation ±ΔN (absolute count)
   double density_tolerance = 1e-8;  ///< density: relative tolerance on h
   int max_iterations = 100;         ///< density: Newton iterations before giving up
 
@@ -109,7 +109,8 @@ inline void initial_guess(Particles<D>& p, const Box<D>& box, const SmoothingLen
   }
   if (spread == 0) {
     throw Error("neighbour search: all " + show(n) + " particles are at one point, " +
-                to_string<D>(lo) + ", so nothing sets a length to start h from (give the particles "
+                to_string<D>(lo) +
+                ", so nothing sets a length to start h from (give the particles "
                 "distinct positions, or h)");
   }
   const double per_particle = volume / static_cast<double>(n);
@@ -127,7 +128,9 @@ inline void initial_guess(Particles<D>& p, const Box<D>& box, const SmoothingLen
 /// (2h)^2, written once: the count, the kept pairs and the one-sided test must agree to the
 /// last bit on which side of 2h a distance lies, and it grows with h in floating point too.
 template <class K>
-inline double support2(double h) { return (K::support * h) * (K::support * h); }
+inline double support2(double h) {
+  return (K::support * h) * (K::support * h);
+}
 
 /// How many of the candidates lie within 2h (r_ij^2 < support2(h)).
 template <class K>
@@ -170,8 +173,10 @@ inline bool settle_by_count(const SmoothingLengthRule& rule, double radius,
     rn12 = std::numeric_limits<double>::infinity();
     for (std::size_t k = 0; k < found.size; ++k) {
       const double r2 = found.r2[k];
-      if (r2 < reach2) rn2 = std::max(rn2, r2);
-      else rn12 = std::min(rn12, r2);
+      if (r2 < reach2)
+        rn2 = std::max(rn2, r2);
+      else
+        rn12 = std::min(rn12, r2);
     }
   } else {
     const bool below = inside > n;  // both inside 2h, at ranks n and n + 1 there
@@ -267,8 +272,7 @@ inline bool settle_by_density(const Particles<D>& p, const SmoothingLengthRule& 
     }
   }
   throw Error("particle " + show(i) + " at " + to_string<D>(p.position[i]) +
-              ": smoothing length from density did not converge in " +
-              show(rule.max_iterations) +
+              ": smoothing length from density did not converge in " + show(rule.max_iterations) +
               " iterations (last h = " + show(h_new) + ")");
 }
 

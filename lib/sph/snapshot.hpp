@@ -131,7 +131,8 @@ void write_file_atomically(const std::string& path, Writer&& write) {
     std::ofstream out(temporary, std::ios::binary | std::ios::trunc);
     require(static_cast<bool>(out), "cannot write " + path + ": cannot open " + temporary + " (" +
                                         std::strerror(errno) + ")");
-    out.imbue(std::locale::classic());  // no digit grouping in the integers, whatever the user's locale
+    out.imbue(
+        std::locale::classic());  // no digit grouping in the integers, whatever the user's locale
     write(out);
     out.close();
     if (!out) {
@@ -182,7 +183,8 @@ void write_snapshot(const std::string& path, const Particles<D>& p, double time,
   using splash_ascii::format_number;
   const std::size_t n = p.size();
   // Every written field must cover every particle.
-  for (const auto* field : {&p.mass, &p.smoothing_length, &p.density, &p.internal_energy, &p.pressure}) {
+  for (const auto* field :
+       {&p.mass, &p.smoothing_length, &p.density, &p.internal_energy, &p.pressure}) {
     require(field->size() == n, "snapshot " + path + ": a field has " + show(field->size()) +
                                     " entries for " + show(n) + " particles");
   }
@@ -202,7 +204,8 @@ void write_snapshot(const std::string& path, const Particles<D>& p, double time,
         row[a] = p.position[i][a];
         row[D + a] = p.velocity[i][a];
       }
-      const double scalars[5] = {p.mass[i], p.smoothing_length[i], p.density[i], p.internal_energy[i], p.pressure[i]};
+      const double scalars[5] = {p.mass[i], p.smoothing_length[i], p.density[i],
+                                 p.internal_energy[i], p.pressure[i]};
       std::copy(scalars, scalars + 5, row + 2 * D);
       splash_ascii::write_row(out, row, 2 * D + 5);
     }
@@ -215,7 +218,8 @@ void write_snapshot(const std::string& path, const Particles<D>& p, double time,
 template <int D>
 Snapshot<D> read_snapshot(const std::string& path) {
   std::ifstream in(path);
-  require(static_cast<bool>(in), "cannot read snapshot " + path + " (" + std::strerror(errno) + ")");
+  require(static_cast<bool>(in),
+          "cannot read snapshot " + path + " (" + std::strerror(errno) + ")");
   Snapshot<D> snapshot;
   std::map<std::string, double> header;  // "# <number>  <name>" lines
   std::vector<std::string> labels;
@@ -236,16 +240,18 @@ Snapshot<D> read_snapshot(const std::string& path) {
     }
     // A data row: as many numbers as labels.
     require(!labels.empty(), where + ": data before the column-label line");
-    require(tokens.size() == labels.size(), where + ": " + show(tokens.size()) +
-                                                " numbers for " + show(labels.size()) + " columns");
+    require(tokens.size() == labels.size(), where + ": " + show(tokens.size()) + " numbers for " +
+                                                show(labels.size()) + " columns");
     std::vector<double>& row = rows.emplace_back(tokens.size());
     for (std::size_t c = 0; c < tokens.size(); ++c) {
-      require(splash_ascii::parse_number(tokens[c], row[c]),
-              where + ": column " + show(c + 1) + " '" + std::string(tokens[c]) + "' is not a number");
+      require(
+          splash_ascii::parse_number(tokens[c], row[c]),
+          where + ": column " + show(c + 1) + " '" + std::string(tokens[c]) + "' is not a number");
     }
   }
   // Header values.
-  require(header.count("time") && header.count("gamma"), "snapshot " + path + ": no time or gamma header line");
+  require(header.count("time") && header.count("gamma"),
+          "snapshot " + path + ": no time or gamma header line");
   snapshot.time = header["time"];
   snapshot.gamma = header["gamma"];
   if (header.count("dimensions")) {
@@ -266,8 +272,9 @@ Snapshot<D> read_snapshot(const std::string& path) {
     throw Error("snapshot " + path + ": no column labelled '" + label + "'");
   };
   if (D < 3) {
-    require(std::find(labels.begin(), labels.end(), axis_name(D)) == labels.end(),
-            "snapshot " + path + " has a column '" + axis_name(D) + "': it is not " + show(D) + "D");
+    require(
+        std::find(labels.begin(), labels.end(), axis_name(D)) == labels.end(),
+        "snapshot " + path + " has a column '" + axis_name(D) + "': it is not " + show(D) + "D");
   }
   std::size_t x[D], v[D];
   for (int a = 0; a < D; ++a) {

@@ -67,9 +67,13 @@ struct PairAcceleration {
 
 // --- what a term has (each member is optional) ---------------------------------------------
 template <class T>
-concept HasNeeds = requires { { T::needs } -> std::convertible_to<Needs>; };
+concept HasNeeds = requires {
+  { T::needs } -> std::convertible_to<Needs>;
+};
 template <class T>
-concept HasResize = requires(T t, std::size_t n) { t.resize(n); };
+concept HasResize = requires(T t, std::size_t n) {
+  t.resize(n);
+};
 template <class T, int D>
 concept HasBracket = requires(const T t, const Pair<D>& pair, const ParticleView<D>& view) {
   { t.bracket(pair, view) } -> std::same_as<Bracket>;
@@ -79,26 +83,33 @@ concept HasHeating = requires(const T t, const Pair<D>& pair, const ParticleView
   { t.heating(pair, view) } -> std::convertible_to<double>;
 };
 template <class T, int D>
-concept HasPairAcceleration = requires(const T t, const Pair<D>& pair, const ParticleView<D>& view) {
+concept HasPairAcceleration = requires(const T t, const Pair<D>& pair,
+                                       const ParticleView<D>& view) {
   { t.pair_acceleration(pair, view) } -> std::same_as<PairAcceleration>;
 };
 template <class T, int D>
-concept HasGradientPass = requires(T t, typename T::template GradientSum<D>& sum, const Pair<D>& pair,
-                                   const ParticleView<D>& view, std::size_t i) {
+concept HasGradientPass = requires(T t, typename T::template GradientSum<D>& sum,
+                                   const Pair<D>& pair, const ParticleView<D>& view,
+                                   std::size_t i) {
   t.gradient_pair(sum, pair, view);
   t.gradient_finish(i, sum, view);
 };
 template <class T, int D>
-concept HasAfterDensity = requires(T t, std::size_t i, const ParticleView<D>& view) { t.after_density(i, view); };
+concept HasAfterDensity = requires(T t, std::size_t i, const ParticleView<D>& view) {
+  t.after_density(i, view);
+};
 template <class T, int D>
-concept HasBeforeForce = requires(T t, std::size_t i, const ParticleView<D>& view) { t.before_force(i, view); };
+concept HasBeforeForce = requires(T t, std::size_t i, const ParticleView<D>& view) {
+  t.before_force(i, view);
+};
 template <class T, int D>
-concept HasAfterForce = requires(T t, std::size_t i, const ParticleView<D>& view, Vec<D>& a, double& dudt) {
+concept HasAfterForce = requires(T t, std::size_t i, const ParticleView<D>& view, Vec<D>& a,
+                                 double& dudt) {
   t.after_force(i, view, a, dudt);
 };
 template <class T, int D>
 concept HasWithKick = requires(T t, std::size_t i, double dt, const Vec<D>& v_before, Vec<D>& v,
-                                double& u) {
+                               double& u) {
   t.with_kick(i, dt, v_before, v, u);
 };
 template <class T, int D>
@@ -114,10 +125,10 @@ concept HasTimestep = requires(const T t, std::size_t i, const ParticleView<D>& 
 /// Whether the step recognises at least one member of term T: a term whose members all have
 /// the wrong signature would otherwise be silently left out of the step.
 template <class T, int D>
-concept RecognisedTerm = HasNeeds<T> || HasResize<T> || HasBracket<T, D> || HasPairAcceleration<T, D> ||
-                         HasHeating<T, D> ||
-                         HasGradientPass<T, D> || HasAfterDensity<T, D> || HasBeforeForce<T, D> ||
-                         HasAfterForce<T, D> || HasWithKick<T, D> || HasSignalSpeed<T, D> || HasTimestep<T, D>;
+concept RecognisedTerm =
+    HasNeeds<T> || HasResize<T> || HasBracket<T, D> || HasPairAcceleration<T, D> ||
+    HasHeating<T, D> || HasGradientPass<T, D> || HasAfterDensity<T, D> || HasBeforeForce<T, D> ||
+    HasAfterForce<T, D> || HasWithKick<T, D> || HasSignalSpeed<T, D> || HasTimestep<T, D>;
 
 /// The fields term T asks the density pass for.
 template <class T>
@@ -140,9 +151,7 @@ struct Terms {
 
   Terms() = default;
   /// The terms with their parameters, in the order of the list: `{{}, MonaghanGingold1983{1, 2}}`.
-  Terms(const T&... terms)
-    requires(sizeof...(T) > 0)
-      : parts(terms...) {}
+  Terms(const T&... terms) requires(sizeof...(T) > 0) : parts(terms...) {}
 
   static constexpr std::size_t count = sizeof...(T);
   /// Every field the density pass must sum for these terms.
@@ -175,9 +184,13 @@ struct Terms {
 
   /// Term U.
   template <class U>
-  U& get() { return std::get<U>(parts); }
+  U& get() {
+    return std::get<U>(parts);
+  }
   template <class U>
-  const U& get() const { return std::get<U>(parts); }
+  const U& get() const {
+    return std::get<U>(parts);
+  }
 
   /// Call f(term) for every term, in order.
   template <class F>
@@ -194,7 +207,8 @@ struct Terms {
 /// \f$ \mu_{ij} \f$ they report, and -- when some term says who is heated -- the heating factor
 /// \f$ \sum H_{ij} \f$ (\f$ \tfrac12 B_{ij} \f$ for the terms that do not say).
 template <int D, class... T>
-inline Bracket bracket_of(const Terms<T...>& terms, const Pair<D>& pair, const ParticleView<D>& view) {
+inline Bracket bracket_of(const Terms<T...>& terms, const Pair<D>& pair,
+                          const ParticleView<D>& view) {
   constexpr bool heating = Terms<T...>::template any_heating<D>;
   Bracket sum;
   terms.for_each([&](const auto& t) {

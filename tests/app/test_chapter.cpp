@@ -69,8 +69,8 @@ std::string read(const fs::path& path) {
 
 TEST_CASE("a good command line parses and sets the parameters", "[app]") {
   const fs::path dir = scratch("good");
-  const Parsed result = parse({"ch99", "--gamma", "1.6", "--particles=100", "--quick", "--output",
-                               dir.string()});
+  const Parsed result =
+      parse({"ch99", "--gamma", "1.6", "--particles=100", "--quick", "--output", dir.string()});
   CHECK(result.code == -1);
   CHECK(result.err.empty());
   CHECK(result.gamma == 1.6);
@@ -154,8 +154,8 @@ TEST_CASE("a switch is off by default and on when given", "[app]") {
 }
 
 TEST_CASE("a condition between parameters is checked by parse", "[app]") {
-  CommandLine line({"ch99", "--h-min", "2", "--h-max", "1", "--output",
-                    scratch("require").string()});
+  CommandLine line(
+      {"ch99", "--h-min", "2", "--h-max", "1", "--output", scratch("require").string()});
   app::Chapter chapter("99-test", "Chapter 99: a test", line.argc(), line.argv());
   std::ostringstream out, err;
   chapter.set_streams(out, err);

@@ -21,7 +21,8 @@ const std::vector<double> some{1, 2, 3};
 std::vector<std::string> files_like(const std::string& dir, const std::string& stem) {
     std::vector<std::string> found;
     for (const auto& entry : std::filesystem::directory_iterator(dir))
-        if (entry.path().filename().string().rfind(stem, 0) == 0) found.push_back(entry.path().string());
+        if (entry.path().filename().string().rfind(stem, 0) == 0)
+            found.push_back(entry.path().string());
     return found;
 }
 
@@ -41,7 +42,8 @@ TEST_CASE("errors: plot::Error is a std::exception", "[plot][errors]") {
 
 TEST_CASE("errors: no GL context for an impossible buffer", "[plot][errors]") {
     // OSMesa buffers are limited to 16384 pixels a side.
-    CHECK_THROWS_WITH(plot::detail::Canvas(20000, 100, 1, plot::white), Contains("OSMesa") && Contains("20000"));
+    CHECK_THROWS_WITH(plot::detail::Canvas(20000, 100, 1, plot::white),
+                      Contains("OSMesa") && Contains("20000"));
     CHECK_NOTHROW(plot::detail::Canvas(100, 100, 2, plot::white));
 }
 
@@ -50,8 +52,10 @@ TEST_CASE("errors: absurd figure sizes and layouts", "[plot][errors]") {
     CHECK_THROWS_WITH(plot::Figure(1, 40), Contains("1..16"));
     CHECK_THROWS_WITH(plot::Figure(1, 1, {.width = 100000, .height = 600}), Contains("100000×600"));
     CHECK_THROWS_WITH(plot::Figure(1, 1, {.width = 10, .height = 600}), Contains("64..10000"));
-    CHECK_THROWS_WITH(plot::Figure(1, 1, {.width = 800, .height = 600, .font_size = 0}), Contains("font size"));
-    CHECK_THROWS_WITH(plot::Figure(1, 1, {.width = 800, .height = 600, .supersample = 9}), Contains("supersampling"));
+    CHECK_THROWS_WITH(plot::Figure(1, 1, {.width = 800, .height = 600, .font_size = 0}),
+                      Contains("font size"));
+    CHECK_THROWS_WITH(plot::Figure(1, 1, {.width = 800, .height = 600, .supersample = 9}),
+                      Contains("supersampling"));
     plot::Figure fig(2, 2);
     CHECK_THROWS_WITH(fig.panel(2, 0), Contains("no panel (2, 0)"));
     CHECK_THROWS_WITH(fig.panel(7), Contains("no panel 7"));
@@ -65,7 +69,8 @@ TEST_CASE("errors: unwritable output paths", "[plot][errors]") {
     plot::Figure fig(1, 1, {.width = 300, .height = 200});
     fig.panel(0).line(some, some);
     CHECK_THROWS_WITH(fig.save_png(""), Contains("empty"));
-    CHECK_THROWS_WITH(fig.save_png("/nonexistent/dir/figure.png"), Contains("/nonexistent/dir") && Contains("does not exist"));
+    CHECK_THROWS_WITH(fig.save_png("/nonexistent/dir/figure.png"),
+                      Contains("/nonexistent/dir") && Contains("does not exist"));
     CHECK_THROWS_WITH(fig.save_png(output_dir), Contains("is a directory"));
     // A directory that refuses new files even to root.
     CHECK_THROWS_WITH(fig.save_png("/proc/plot_test.png"), Contains("/proc/plot_test.png"));
@@ -94,10 +99,14 @@ TEST_CASE("errors: empty, mismatched and all-NaN data", "[plot][errors]") {
     plot::Figure fig(1, 1);
     plot::Axes& ax = fig.panel(0);
     const std::vector<double> none, nan3(3, std::nan(""));
-    CHECK_THROWS_WITH(ax.scatter(none, none, {.label = "SPH"}), Contains("scatter 'SPH'") && Contains("no data"));
-    CHECK_THROWS_WITH(ax.line(some, std::vector<double>{1, 2}), Contains("x has 3 values but y has 2"));
-    CHECK_THROWS_WITH(ax.line(nan3, some, {.label = "exact"}), Contains("'exact'") && Contains("all 3 points are NaN"));
-    CHECK_THROWS_WITH(ax.image(std::vector<double>(4, std::nan("")), 2, 2, {}), Contains("all 4 cells are NaN"));
+    CHECK_THROWS_WITH(ax.scatter(none, none, {.label = "SPH"}),
+                      Contains("scatter 'SPH'") && Contains("no data"));
+    CHECK_THROWS_WITH(ax.line(some, std::vector<double>{1, 2}),
+                      Contains("x has 3 values but y has 2"));
+    CHECK_THROWS_WITH(ax.line(nan3, some, {.label = "exact"}),
+                      Contains("'exact'") && Contains("all 3 points are NaN"));
+    CHECK_THROWS_WITH(ax.image(std::vector<double>(4, std::nan("")), 2, 2, {}),
+                      Contains("all 4 cells are NaN"));
     CHECK_THROWS_WITH(ax.image(some, 2, 2, {}), Contains("3 values for a 2×2 grid"));
     CHECK_THROWS_WITH(ax.image(std::vector<double>{}, 0, 0, {}), Contains("empty grid"));
     CHECK_THROWS_WITH(ax.hline(std::nan("")), Contains("non-finite"));

@@ -17,10 +17,11 @@ TEST_CASE("markup: plain text is one run at the base size", "[plot][markup]") {
 
 TEST_CASE("markup: Greek letters and symbols", "[plot][markup]") {
     const std::pair<const char*, const char*> cases[] = {
-        {"\\rho", "ρ"},     {"\\alpha", "α"},   {"\\beta", "β"},     {"\\gamma", "γ"},  {"\\mu", "μ"},
-        {"\\nu", "ν"},      {"\\sigma", "σ"},   {"\\pi", "π"},       {"\\eta", "η"},    {"\\nabla", "∇"},
-        {"\\langle", "⟨"},  {"\\rangle", "⟩"},  {"\\Delta", "Δ"},    {"\\Pi", "Π"},     {"\\Sigma", "Σ"},
-        {"\\epsilon", "ϵ"}, {"\\varepsilon", "ε"}, {"\\omega", "ω"}, {"\\infty", "∞"},  {"\\partial", "∂"},
+        {"\\rho", "ρ"},        {"\\alpha", "α"}, {"\\beta", "β"},   {"\\gamma", "γ"},
+        {"\\mu", "μ"},         {"\\nu", "ν"},    {"\\sigma", "σ"},  {"\\pi", "π"},
+        {"\\eta", "η"},        {"\\nabla", "∇"}, {"\\langle", "⟨"}, {"\\rangle", "⟩"},
+        {"\\Delta", "Δ"},      {"\\Pi", "Π"},    {"\\Sigma", "Σ"},  {"\\epsilon", "ϵ"},
+        {"\\varepsilon", "ε"}, {"\\omega", "ω"}, {"\\infty", "∞"},  {"\\partial", "∂"},
     };
     for (const auto& [input, expected] : cases) {
         INFO(input);
@@ -30,7 +31,8 @@ TEST_CASE("markup: Greek letters and symbols", "[plot][markup]") {
 
 TEST_CASE("markup: operators and relations get TeX-like thin spaces", "[plot][markup]") {
     // U+2005 (1/4 em) around binary operators, U+2004 (1/3 em) around relations.
-    CHECK(plain_text(parse_markup("\\nabla\\times\\nabla\\times v")) == "∇\u2005×\u2005∇\u2005×\u2005v");
+    CHECK(plain_text(parse_markup("\\nabla\\times\\nabla\\times v")) ==
+          "∇\u2005×\u2005∇\u2005×\u2005v");
     CHECK(plain_text(parse_markup("a \\cdot b")) == "a\u2005⋅\u2005b");
     CHECK(plain_text(parse_markup("x \\le 1")) == "x\u2004≤\u20041");
     CHECK(plain_text(parse_markup("x\\ge1")) == "x\u2004≥\u20041");
@@ -90,8 +92,8 @@ TEST_CASE("markup: groups, escapes and TeX habits", "[plot][markup]") {
     CHECK(plain_text(parse_markup("t_{\\mathrm{run}}")) == "trun");
     CHECK(plain_text(parse_markup("\\{x\\} 50\\% a\\_b")) == "{x} 50% a_b");
     CHECK(plain_text(parse_markup("a\\,b")) == "a\u2006b");
-    CHECK(plain_text(parse_markup("x-axis")) == "x-axis");   // a hyphen stays a hyphen
-    CHECK(plain_text(parse_markup("-0.5")) == "−0.5");       // a number's sign becomes a minus
+    CHECK(plain_text(parse_markup("x-axis")) == "x-axis");  // a hyphen stays a hyphen
+    CHECK(plain_text(parse_markup("-0.5")) == "−0.5");      // a number's sign becomes a minus
     CHECK(plain_text(parse_markup("x = -1")) == "x = −1");
 }
 
@@ -129,8 +131,10 @@ TEST_CASE("markup: DejaVu Sans has a glyph for every command", "[plot][markup][t
         "\\chi\\psi\\omega\\Gamma\\Delta\\Theta\\Lambda\\Xi\\Pi\\Sigma\\Upsilon\\Phi\\Psi\\Omega"
         "\\nabla\\partial\\infty\\langle\\rangle\\odot\\prime\\ell\\hbar\\degree\\circ\\sqrt\\sum"
         "\\int\\AA\\ldots\\dots\\cdots\\perp\\parallel\\dagger\\uparrow\\downarrow "
-        "a\\times b\\cdot c\\pm d\\mp e\\div f\\le g\\leq h\\ge i\\geq j\\ne k\\neq l\\approx m\\sim n"
-        "\\simeq o\\propto p\\equiv q\\ll r\\gg s\\to t\\rightarrow u\\leftarrow v\\Rightarrow w -1";
+        "a\\times b\\cdot c\\pm d\\mp e\\div f\\le g\\leq h\\ge i\\geq j\\ne k\\neq l\\approx "
+        "m\\sim n"
+        "\\simeq o\\propto p\\equiv q\\ll r\\gg s\\to t\\rightarrow u\\leftarrow v\\Rightarrow w "
+        "-1";
     plot::detail::Font font(plot::default_font());
     CHECK(font.missing_glyphs(parse_markup(all)).empty());
     // And the font reports what it lacks.

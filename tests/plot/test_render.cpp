@@ -51,7 +51,8 @@ const Rgb white{255, 255, 255};
 
 TEST_CASE("render: the image has the requested size", "[plot][render]") {
     plot::Figure fig(2, 3, {.width = 900, .height = 500});
-    for (int i = 0; i < 6; ++i) fig.panel(i).line(std::vector<double>{0, 1}, std::vector<double>{0, double(i)});
+    for (int i = 0; i < 6; ++i)
+        fig.panel(i).line(std::vector<double>{0, 1}, std::vector<double>{0, double(i)});
     const plot::Image image = fig.render();
     CHECK(image.width == 900);
     CHECK(image.height == 500);
@@ -92,11 +93,14 @@ TEST_CASE("render: lines land on their data coordinates", "[plot][render]") {
     plot::Figure fig(1, 1, {.width = 400, .height = 300, .panel_letters = false});
     plot::Axes& ax = fig.panel(0, 0);
     ax.xlim(0, 10).ylim(0, 10);
-    ax.line(std::vector<double>{0, 10}, std::vector<double>{3, 3}, {.color = plot::blue, .width = 3.0});
-    ax.line(std::vector<double>{0, 10}, std::vector<double>{0, 10}, {.color = plot::green, .width = 3.0});
+    ax.line(std::vector<double>{0, 10}, std::vector<double>{3, 3},
+            {.color = plot::blue, .width = 3.0});
+    ax.line(std::vector<double>{0, 10}, std::vector<double>{0, 10},
+            {.color = plot::green, .width = 3.0});
     ax.vline(7, {.color = plot::red, .width = 3.0});
     const plot::Image image = fig.render();
-    const Rgb blue = plot::to_rgb8(plot::blue), green = plot::to_rgb8(plot::green), red = plot::to_rgb8(plot::red);
+    const Rgb blue = plot::to_rgb8(plot::blue), green = plot::to_rgb8(plot::green),
+              red = plot::to_rgb8(plot::red);
 
     // Horizontal line y = 3: its centroid in a column is on y = 3.
     const plot::Point h = ax.to_pixel(5, 3);
@@ -155,7 +159,8 @@ TEST_CASE("render: NaN points are skipped and counted, lines break at them", "[p
     // Non-positive values on a log axis are skipped and counted at render time.
     plot::Figure logfig(1, 1, {.width = 400, .height = 300});
     plot::Axes& lx = logfig.panel(0, 0);
-    lx.yscale(plot::Scale::log).scatter(std::vector<double>{1, 2, 3}, std::vector<double>{-1, 0, 5});
+    lx.yscale(plot::Scale::log)
+        .scatter(std::vector<double>{1, 2, 3}, std::vector<double>{-1, 0, 5});
     logfig.render();
     CHECK(lx.skipped_points() == 2);
     CHECK(lx.yrange().first > 0);
@@ -209,13 +214,15 @@ TEST_CASE("render: a million-point scatter stays fast", "[plot][render][speed]")
     ax.legend();
     const std::string path = output_dir + "/scatter_1e6.png";
     fig.save_png(path);
-    const double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+    const double seconds =
+        std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
     std::printf("plot: 10^6-point scatter, 1600×1200 px, render + PNG: %.2f s\n", seconds);
     CHECK(seconds < 5.0);  // about 1 s on the reference machine; generous for loaded CI
     CHECK(std::filesystem::file_size(path) > 10000);
 }
 
-TEST_CASE("render: colour-mapped scatter and the SPLASH red map with a log colour bar", "[plot][render]") {
+TEST_CASE("render: colour-mapped scatter and the SPLASH red map with a log colour bar",
+          "[plot][render]") {
     plot::Figure fig(1, 2, {.width = 1400, .height = 560});
     std::vector<double> x, y, rho;
     plot::demo::Noise noise(7);
@@ -226,19 +233,25 @@ TEST_CASE("render: colour-mapped scatter and the SPLASH red map with a log colou
     }
     plot::Axes& a = fig.panel(0);
     a.xlabel("x").ylabel("y").equal_aspect().xlim(-3, 3).ylim(-3, 3);
-    a.scatter(x, y, rho, {.map = plot::Colormap::red, .log = true, .colorbar_label = "\\rho", .size = 2.5});
+    a.scatter(x, y, rho,
+              {.map = plot::Colormap::red, .log = true, .colorbar_label = "\\rho", .size = 2.5});
     Eigen::ArrayXXd grid(64, 48);
     for (int i = 0; i < 64; ++i)
-        for (int j = 0; j < 48; ++j) grid(i, j) = (i == 10 && j == 10) ? std::nan("") : std::pow(10.0, 0.05 * (i + j) - 2);
+        for (int j = 0; j < 48; ++j)
+            grid(i, j) = (i == 10 && j == 10) ? std::nan("") : std::pow(10.0, 0.05 * (i + j) - 2);
     plot::Axes& b = fig.panel(1);
     b.xlabel("x").ylabel("y");
-    b.image(grid, {0, 4, 0, 3}, {.map = plot::Colormap::red, .log = true, .colorbar_label = "|\\nabla\\times\\nabla\\times v|"});
+    b.image(grid, {0, 4, 0, 3},
+            {.map = plot::Colormap::red,
+             .log = true,
+             .colorbar_label = "|\\nabla\\times\\nabla\\times v|"});
     fig.save_png(output_dir + "/colour_maps.png");
     CHECK(b.skipped_points() == 1);
     // The image covers its extent: its lowest-left cell has the map's colour for 10^-2.
     const plot::Point p = b.to_pixel(0.02, 0.02);
     const plot::Image image = fig.render();
-    CHECK(near(image.at(int(p.x) + 1, int(p.y) - 1), plot::to_rgb8(plot::map_color(plot::Colormap::red, 0.0)), 40));
+    CHECK(near(image.at(int(p.x) + 1, int(p.y) - 1),
+               plot::to_rgb8(plot::map_color(plot::Colormap::red, 0.0)), 40));
 }
 
 TEST_CASE("render: the demonstration figure", "[plot][render][demo]") {
@@ -251,8 +264,12 @@ TEST_CASE("render: the demonstration figure", "[plot][render][demo]") {
 }
 
 TEST_CASE("stamp: the usual line from its parts", "[plot][stamp]") {
-    CHECK(plot::format_stamp({.scheme = "Monaghan-Gingold AV", .kernel = "M4", .neighbours = 5, .particles = 450,
-                              .run_time = 0.12}) == "Monaghan-Gingold AV, M4 kernel, N_{ngb} = 5, N = 450, 0.12 s");
+    CHECK(plot::format_stamp({.scheme = "Monaghan-Gingold AV",
+                              .kernel = "M4",
+                              .neighbours = 5,
+                              .particles = 450,
+                              .run_time = 0.12}) ==
+          "Monaghan-Gingold AV, M4 kernel, N_{ngb} = 5, N = 450, 0.12 s");
     CHECK(plot::format_stamp({.kernel = "M4", .run_time = 1234.4}) == "M4 kernel, 1234 s");
     CHECK(plot::format_stamp({}).empty());
 }
@@ -266,6 +283,7 @@ TEST_CASE("render: hidden and empty panels", "[plot][render]") {
     // Nothing at all in the hidden cell.
     bool blank = true;
     for (int y = 310; y < 600; ++y)
-        for (int x = 410; x < 800; ++x) blank = blank && image.at(x, y) == std::array<std::uint8_t, 3>{255, 255, 255};
+        for (int x = 410; x < 800; ++x)
+            blank = blank && image.at(x, y) == std::array<std::uint8_t, 3>{255, 255, 255};
     CHECK(blank);
 }

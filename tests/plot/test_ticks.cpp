@@ -73,7 +73,8 @@ TEST_CASE("ticks: very large or small values share an exponent", "[plot][ticks]"
 
 TEST_CASE("ticks: log axes label decades, minor ticks at 2..9", "[plot][ticks]") {
     const auto set = plot::make_ticks(Scale::log, 1e-3, 1e2, 8);
-    CHECK(labels(set) == std::vector<std::string>{"10^{-3}", "10^{-2}", "10^{-1}", "10^{0}", "10^{1}", "10^{2}"});
+    CHECK(labels(set) ==
+          std::vector<std::string>{"10^{-3}", "10^{-2}", "10^{-1}", "10^{0}", "10^{1}", "10^{2}"});
     CHECK(count_minor(set) == 5 * 8);
     for (const auto& t : set.ticks) {
         if (!t.major) continue;

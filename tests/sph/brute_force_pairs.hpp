@@ -20,7 +20,8 @@ PairSet brute_force(const sph::Particles<D>& p, const sph::Box<D>& box) {
   PairSet pairs;
   const double hmax = *std::max_element(p.smoothing_length.begin(), p.smoothing_length.end());
   std::array<int, D> reach{};
-  for (int a = 0; a < D; ++a) reach[a] = box.periodic[a] ? static_cast<int>(std::ceil(4 * hmax / box.length(a))) + 1 : 0;
+  for (int a = 0; a < D; ++a)
+    reach[a] = box.periodic[a] ? static_cast<int>(std::ceil(4 * hmax / box.length(a))) + 1 : 0;
   for (std::size_t i = 0; i < p.size(); ++i) {
     for (std::size_t j = 0; j < p.size(); ++j) {
       std::array<int, D> k{};
@@ -31,7 +32,8 @@ PairSet brute_force(const sph::Particles<D>& p, const sph::Box<D>& box) {
         const sph::Image image = sph::pack_image<D>(k);
         const double r = (p.position[i] - p.position[j] - offset).norm();
         const double reach_ij = 2.0 * std::max(p.smoothing_length[i], p.smoothing_length[j]);
-        if (!(i == j && image == 0) && r < reach_ij) pairs.insert({i, static_cast<std::uint32_t>(j), image});
+        if (!(i == j && image == 0) && r < reach_ij)
+          pairs.insert({i, static_cast<std::uint32_t>(j), image});
         int a = 0;
         while (a < D && k[a] == reach[a]) {
           k[a] = -reach[a];

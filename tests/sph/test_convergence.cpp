@@ -15,10 +15,14 @@
 namespace {
 
 /// Runs with error = C dx^order and run time = t0 N^cost, for N = 100, 200, 400, 800 in 1D.
-void add_synthetic(sph::ErrorVsTime& study, const std::string& method, double C, double order, double cost) {
+void add_synthetic(sph::ErrorVsTime& study, const std::string& method, double C, double order,
+                   double cost) {
   for (int n : sph::geometric_series(100, 2.0, 4)) {
     const double dx = 1.0 / n;
-    study.add({method, n, dx, 1e-6 * std::pow(n, cost),
+    study.add({method,
+               n,
+               dx,
+               1e-6 * std::pow(n, cost),
                {{"L1(rho)", C * std::pow(dx, order)}, {"L1(v)", 2 * C * std::pow(dx, 1.0)}}});
   }
 }
@@ -82,7 +86,8 @@ TEST_CASE("convergence: the table lists the runs and the orders, aligned", "[con
 TEST_CASE("convergence: a method with one resolution has no order", "[convergence]") {
   sph::ErrorVsTime study("one point");
   study.add({"single", 100, 0.01, 1.0, {{"L1", 0.1}}});
-  CHECK_THROWS_WITH(study.order("single", "L1"), Catch::Contains("fewer than two distinct resolutions"));
+  CHECK_THROWS_WITH(study.order("single", "L1"),
+                    Catch::Contains("fewer than two distinct resolutions"));
   CHECK(study.table().find("n/a") != std::string::npos);
 }
 
@@ -90,8 +95,10 @@ TEST_CASE("convergence: bad runs are refused", "[convergence]") {
   sph::ErrorVsTime study("bad");
   CHECK_THROWS_WITH(study.add({"m", 100, 0.01, 1.0, {{"L1(rho)", std::nan("")}}}),
                     Catch::Contains("L1(rho) = nan"));
-  CHECK_THROWS_WITH(study.add({"m", 100, -0.01, 1.0, {{"L1", 0.1}}}), Catch::Contains("resolution"));
-  CHECK_THROWS_WITH(study.add({"m", 0, 0.01, 1.0, {{"L1", 0.1}}}), Catch::Contains("particle number"));
+  CHECK_THROWS_WITH(study.add({"m", 100, -0.01, 1.0, {{"L1", 0.1}}}),
+                    Catch::Contains("resolution"));
+  CHECK_THROWS_WITH(study.add({"m", 0, 0.01, 1.0, {{"L1", 0.1}}}),
+                    Catch::Contains("particle number"));
   CHECK_THROWS_WITH(study.add({"", 10, 0.01, 1.0, {{"L1", 0.1}}}), Catch::Contains("method"));
   CHECK_THROWS_WITH(study.add({"m", 10, 0.01, 1.0, {}}), Catch::Contains("measured no error"));
   CHECK(study.records().empty());

@@ -31,7 +31,8 @@ bool close(double value, double expected, double relative, double floor = 1e-300
 
 // A random 3D set in a periodic unit box with constant h.
 sph::Particles<3> random_set(std::size_t n, double h, std::uint64_t seed) {
-  auto p = sph::make_particles<3>(sph::uniform_random<3>(Vec<3>::Zero(), Vec<3>::Ones(), n, seed), 1.0 / n);
+  auto p = sph::make_particles<3>(sph::uniform_random<3>(Vec<3>::Zero(), Vec<3>::Ones(), n, seed),
+                                  1.0 / n);
   for (auto& hi : p.smoothing_length) hi = h;
   return p;
 }
@@ -43,7 +44,9 @@ TEST_CASE("the density of a 1D lattice equals the Poisson-summed lattice sum", "
   const int n = 64;
   double worst = 0;
   for (double h_over_dx : {0.8, 1.0, 1.2, 1.5, 1.7, 2.0, 2.6, 3.3}) {
-    auto p = sph::make_particles<1>(sph::lattice<1>(LatticeType::cubic, Vec<1>(0.0), Vec<1>(1.0), std::array<int, 1>{n}), 1.0 / n);
+    auto p = sph::make_particles<1>(
+        sph::lattice<1>(LatticeType::cubic, Vec<1>(0.0), Vec<1>(1.0), std::array<int, 1>{n}),
+        1.0 / n);
     for (auto& h : p.smoothing_length) h = h_over_dx / n;
     sph::NeighbourSearch<1> search;
     search.update(p, box, sph::SmoothingLengthRule::fixed());
@@ -68,11 +71,13 @@ TEST_CASE("the density pass equals a brute-force sum over all periodic images", 
   for (auto& m : p.mass) m *= 0.5 + random.uniform();
   sph::NeighbourSearch<3> search;
   search.update(p, box, sph::SmoothingLengthRule::fixed());
-  for (auto form : {sph::DensityForm::selhammar(), sph::DensityForm::watkins(true), sph::DensityForm::watkins(false)}) {
+  for (auto form : {sph::DensityForm::selhammar(), sph::DensityForm::watkins(true),
+                    sph::DensityForm::watkins(false)}) {
     sph::compute_density(p, search.list(), form);
     double worst = 0;
     for (std::size_t i = 0; i < p.size(); ++i) {
-      double rho = form.self_term ? p.mass[i] * sph::Kernel<3>::value(0, p.smoothing_length[i]) : 0.0;
+      double rho =
+          form.self_term ? p.mass[i] * sph::Kernel<3>::value(0, p.smoothing_length[i]) : 0.0;
       for (std::size_t j = 0; j < p.size(); ++j) {
         for (int kx = -1; kx <= 1; ++kx)
           for (int ky = -1; ky <= 1; ++ky)
@@ -82,19 +87,22 @@ TEST_CASE("the density pass equals a brute-force sum over all periodic images", 
               if (form.sum == sph::DensityForm::Sum::gather) {
                 rho += p.mass[j] * sph::Kernel<3>::value(r, p.smoothing_length[i]);
               } else {
-                rho += 0.5 * (p.mass[i] + p.mass[j]) *
-                       sph::Kernel<3>::value(r, 0.5 * (p.smoothing_length[i] + p.smoothing_length[j]));
+                rho +=
+                    0.5 * (p.mass[i] + p.mass[j]) *
+                    sph::Kernel<3>::value(r, 0.5 * (p.smoothing_length[i] + p.smoothing_length[j]));
               }
             }
       }
       worst = std::max(worst, std::abs(p.density[i] / rho - 1.0));
     }
-    INFO(form.name() << (form.self_term ? " with" : " without") << " self term: worst relative difference " << worst);
+    INFO(form.name() << (form.self_term ? " with" : " without")
+                     << " self term: worst relative difference " << worst);
     CHECK(worst < 1e-12);
   }
 }
 
-TEST_CASE("the self term is m W(0, h), and pair-averaged equals gather at constant h and mass", "[density]") {
+TEST_CASE("the self term is m W(0, h), and pair-averaged equals gather at constant h and mass",
+          "[density]") {
   const auto box = sph::Box<3>::periodic_box(Vec<3>::Zero(), Vec<3>::Ones());
   auto p = random_set(2000, 0.07, 2);
   sph::NeighbourSearch<3> search;
@@ -115,7 +123,8 @@ TEST_CASE("a random set without the self term has mean density (N-1)/N", "[densi
   // Each of the N-1 other particles lands anywhere in the unit box, so E[rho_i] = (N-1) m int W dV.
   // The standard error of the mean over particles is estimated from 8 independent sets.
   const std::size_t n = 4000;
-  const double h = std::cbrt(3.0 * 60 / (32 * std::numbers::pi * n));  // Watkins eq A6, 60 neighbours
+  const double h =
+      std::cbrt(3.0 * 60 / (32 * std::numbers::pi * n));  // Watkins eq A6, 60 neighbours
   const auto box = sph::Box<3>::periodic_box(Vec<3>::Zero(), Vec<3>::Ones());
   std::vector<double> means;
   for (std::uint64_t seed = 1; seed <= 8; ++seed) {
@@ -155,37 +164,45 @@ TEST_CASE("the density does not depend on the number of threads", "[density]") {
 TEST_CASE("bad masses are reported with the particle named", "[density][degenerate]") {
   const auto box = sph::Box<2>::periodic_box(Vec<2>::Zero(), Vec<2>::Ones());
   for (double bad : {0.0, -0.01, std::nan("")}) {
-    auto p = sph::make_particles<2>(sph::uniform_random<2>(Vec<2>::Zero(), Vec<2>::Ones(), 300, 1), 1.0 / 300);
+    auto p = sph::make_particles<2>(sph::uniform_random<2>(Vec<2>::Zero(), Vec<2>::Ones(), 300, 1),
+                                    1.0 / 300);
     p.mass[42] = bad;
     sph::NeighbourSearch<2> search;
     INFO("mass " << bad);
     search.update(p, box, sph::SmoothingLengthRule::neighbour_number(20));
-    CHECK_THROWS_WITH(sph::compute_density(p, search.list()), Catch::Contains("particle 42") && Catch::Contains("mass"));
+    CHECK_THROWS_WITH(sph::compute_density(p, search.list()),
+                      Catch::Contains("particle 42") && Catch::Contains("mass"));
     CHECK_THROWS_WITH(search.update(p, box, sph::SmoothingLengthRule::from_density(20)),
                       Catch::Contains("particle 42") && Catch::Contains("mass"));
   }
 }
 
-TEST_CASE("coincident particles give a finite density, documented: each sees the other at r = 0", "[density][degenerate]") {
+TEST_CASE("coincident particles give a finite density, documented: each sees the other at r = 0",
+          "[density][degenerate]") {
   // Two particles on one spot are neighbours at r = 0: each adds m W(0, h) to the other's density,
   // and the kernel gradient between them is zero (not NaN).  An initial-condition generator that
   // does this is at fault; require_distinct_positions finds it.
   const auto box = sph::Box<2>::periodic_box(Vec<2>::Zero(), Vec<2>::Ones());
-  auto p = sph::make_particles<2>(sph::lattice<2>(LatticeType::cubic, Vec<2>::Zero(), Vec<2>::Ones(), 0.05), 1.0 / 400);
+  auto p = sph::make_particles<2>(
+      sph::lattice<2>(LatticeType::cubic, Vec<2>::Zero(), Vec<2>::Ones(), 0.05), 1.0 / 400);
   p.position[7] = p.position[3];
   for (auto& h : p.smoothing_length) h = 0.06;
   sph::NeighbourSearch<2> search;
   search.update(p, box, sph::SmoothingLengthRule::fixed());
   sph::compute_density(p, search.list(), sph::DensityForm::watkins());
   for (double rho : p.density) CHECK(std::isfinite(rho));
-  CHECK(close(p.density[3], p.density[0] + p.mass[7] * sph::Kernel<2>::value(0, 0.06) -
-                                p.mass[3] * sph::Kernel<2>::value(0.05 * 4, 0.06), 1e-12));
+  CHECK(close(p.density[3],
+              p.density[0] + p.mass[7] * sph::Kernel<2>::value(0, 0.06) -
+                  p.mass[3] * sph::Kernel<2>::value(0.05 * 4, 0.06),
+              1e-12));
   CHECK(sph::Kernel<2>::gradient(Vec<2>::Zero(), 0.06).norm() == 0.0);
-  CHECK_THROWS_WITH(sph::require_distinct_positions<2>(p.position), Catch::Contains("particles 3 and 7 coincide"));
+  CHECK_THROWS_WITH(sph::require_distinct_positions<2>(p.position),
+                    Catch::Contains("particles 3 and 7 coincide"));
 }
 
 TEST_CASE("an isolated particle is reported, not given a zero density", "[density][degenerate]") {
-  auto p = sph::make_particles<3>(sph::uniform_random<3>(Vec<3>::Zero(), Vec<3>::Ones(), 500, 2), 0.002);
+  auto p =
+      sph::make_particles<3>(sph::uniform_random<3>(Vec<3>::Zero(), Vec<3>::Ones(), 500, 2), 0.002);
   p.position[99] = Vec<3>(10, 10, 10);
   for (auto& h : p.smoothing_length) h = 0.1;
   sph::NeighbourSearch<3> search;

@@ -25,7 +25,8 @@ template <int D>
 double smallest_separation(const std::vector<Vec<D>>& x, const sph::Box<D>& box) {
   double smallest = std::numeric_limits<double>::infinity();
   for (std::size_t i = 0; i < x.size(); ++i)
-    for (std::size_t j = i + 1; j < x.size(); ++j) smallest = std::min(smallest, box.separation(x[i], x[j]).norm());
+    for (std::size_t j = i + 1; j < x.size(); ++j)
+      smallest = std::min(smallest, box.separation(x[i], x[j]).norm());
   return smallest;
 }
 
@@ -69,10 +70,12 @@ TEST_CASE("SplitMix64 is reproducible and uniform on the unit interval", "[initi
 
 TEST_CASE("lattices fill the box with the right count and spacing", "[initial_conditions]") {
   SECTION("1D evenly spaced") {
-    const auto x = sph::lattice<1>(LatticeType::cubic, Vec<1>(-1.0), Vec<1>(1.0), std::array<int, 1>{40});
+    const auto x =
+        sph::lattice<1>(LatticeType::cubic, Vec<1>(-1.0), Vec<1>(1.0), std::array<int, 1>{40});
     REQUIRE(x.size() == 40);
     CHECK(x.front()[0] == Approx(-1.0 + 0.025));
-    CHECK(smallest_separation<1>(x, sph::Box<1>::periodic_box(Vec<1>(-1.0), Vec<1>(1.0))) == Approx(0.05));
+    CHECK(smallest_separation<1>(x, sph::Box<1>::periodic_box(Vec<1>(-1.0), Vec<1>(1.0))) ==
+          Approx(0.05));
   }
   SECTION("2D square and hexagonal") {
     const Vec<2> lo(0, 0), hi(1, 0.5);
@@ -94,7 +97,8 @@ TEST_CASE("lattices fill the box with the right count and spacing", "[initial_co
   SECTION("3D cubic and body-centred") {
     const Vec<3> lo(0, 0, 0), hi(1, 1, 2);
     const auto cubic = sph::lattice<3>(LatticeType::cubic, lo, hi, std::array<int, 3>{5, 5, 10});
-    const auto bcc = sph::lattice<3>(LatticeType::body_centred, lo, hi, std::array<int, 3>{5, 5, 10});
+    const auto bcc =
+        sph::lattice<3>(LatticeType::body_centred, lo, hi, std::array<int, 3>{5, 5, 10});
     CHECK(cubic.size() == 250u);
     CHECK(bcc.size() == 500u);
     const auto box = sph::Box<3>::periodic_box(lo, hi);
@@ -104,13 +108,17 @@ TEST_CASE("lattices fill the box with the right count and spacing", "[initial_co
     sph::require_distinct_positions<3>(bcc, box, 0.17);  // nothing closer than 0.173
   }
   SECTION("bad requests are refused") {
-    CHECK_THROWS_AS(sph::lattice<3>(LatticeType::hexagonal, Vec<3>::Zero(), Vec<3>::Ones(), 0.1), sph::Error);
-    CHECK_THROWS_AS(sph::lattice<2>(LatticeType::cubic, Vec<2>::Zero(), Vec<2>::Ones(), -0.1), sph::Error);
-    CHECK_THROWS_AS(sph::lattice<2>(LatticeType::cubic, Vec<2>::Zero(), Vec<2>(1, 0), 0.1), sph::Error);
+    CHECK_THROWS_AS(sph::lattice<3>(LatticeType::hexagonal, Vec<3>::Zero(), Vec<3>::Ones(), 0.1),
+                    sph::Error);
+    CHECK_THROWS_AS(sph::lattice<2>(LatticeType::cubic, Vec<2>::Zero(), Vec<2>::Ones(), -0.1),
+                    sph::Error);
+    CHECK_THROWS_AS(sph::lattice<2>(LatticeType::cubic, Vec<2>::Zero(), Vec<2>(1, 0), 0.1),
+                    sph::Error);
   }
 }
 
-TEST_CASE("a lattice in a periodic box is seamless: every particle sees the same density", "[initial_conditions]") {
+TEST_CASE("a lattice in a periodic box is seamless: every particle sees the same density",
+          "[initial_conditions]") {
   // A seam (a lattice that does not tile the box) would show as particles near the faces with a
   // different neighbour set, hence a different density.
   const Vec<3> lo(0, 0, 0), hi(1, 1, 1);
@@ -139,7 +147,8 @@ TEST_CASE("a lattice in a periodic box is seamless: every particle sees the same
 }
 
 TEST_CASE("cuts keep exactly the points inside", "[initial_conditions]") {
-  const auto x = sph::lattice<3>(LatticeType::cubic, Vec<3>::Constant(-1), Vec<3>::Constant(1), 0.05);
+  const auto x =
+      sph::lattice<3>(LatticeType::cubic, Vec<3>::Constant(-1), Vec<3>::Constant(1), 0.05);
   const auto sphere = sph::cut_sphere<3>(x, Vec<3>::Zero(), 1.0);
   std::size_t expected = 0;
   for (const auto& xi : x) expected += xi.norm() < 1.0;
@@ -152,8 +161,10 @@ TEST_CASE("cuts keep exactly the points inside", "[initial_conditions]") {
   CHECK(slab.size() == 40u * 40u * 10u);
 }
 
-TEST_CASE("ordering by cells keeps the points and puts them slab after slab", "[initial_conditions]") {
-  auto points = sph::lattice<3>(sph::LatticeType::cubic, sph::Vec<3>(-1, 0, 0), sph::Vec<3>(1, 0.2, 0.2), 0.02);
+TEST_CASE("ordering by cells keeps the points and puts them slab after slab",
+          "[initial_conditions]") {
+  auto points = sph::lattice<3>(sph::LatticeType::cubic, sph::Vec<3>(-1, 0, 0),
+                                sph::Vec<3>(1, 0.2, 0.2), 0.02);
   sph::disturb<3>(points, 0.004, 9);
   auto ordered = points;
   sph::order_by_cells<3>(ordered, 0.05);
@@ -173,7 +184,8 @@ TEST_CASE("ordering by cells keeps the points and puts them slab after slab", "[
   for (const auto& x : points) lowest_x = std::min(lowest_x, x[0]);
   for (std::size_t k = 1; k < ordered.size(); ++k) {
     backwards += ordered[k][0] < ordered[k - 1][0] - 0.05;
-    const bool same_slab = std::floor((ordered[k][0] - lowest_x) / 0.05) == std::floor((ordered[k - 1][0] - lowest_x) / 0.05);
+    const bool same_slab = std::floor((ordered[k][0] - lowest_x) / 0.05) ==
+                           std::floor((ordered[k - 1][0] - lowest_x) / 0.05);
     backwards += same_slab && ordered[k][1] < ordered[k - 1][1] - 0.05;
   }
   CHECK(backwards == 0);
@@ -205,7 +217,8 @@ TEST_CASE("disturbances stay within their amplitude and are reproducible", "[ini
 
 TEST_CASE("uniform random sets are reproducible and fill the box", "[initial_conditions]") {
   const Vec<3> lo(-1, 0, 2), hi(1, 0.5, 3);
-  const auto a = sph::uniform_random<3>(lo, hi, 20000, 1), b = sph::uniform_random<3>(lo, hi, 20000, 1);
+  const auto a = sph::uniform_random<3>(lo, hi, 20000, 1),
+             b = sph::uniform_random<3>(lo, hi, 20000, 1);
   CHECK(a == b);
   Vec<3> mean = Vec<3>::Zero();
   for (const auto& x : a) {
@@ -214,19 +227,23 @@ TEST_CASE("uniform random sets are reproducible and fill the box", "[initial_con
   }
   // The mean of 20000 uniform draws is within 5 standard errors, (hi - lo)/sqrt(12 * 20000).
   const Vec<3> centre = 0.5 * (lo + hi);
-  for (int axis = 0; axis < 3; ++axis) CHECK(std::abs(mean[axis] - centre[axis]) < 5 * (hi[axis] - lo[axis]) / std::sqrt(12.0 * 20000));
+  for (int axis = 0; axis < 3; ++axis)
+    CHECK(std::abs(mean[axis] - centre[axis]) <
+          5 * (hi[axis] - lo[axis]) / std::sqrt(12.0 * 20000));
 }
 
 TEST_CASE("coincident positions are reported with both particles named", "[initial_conditions]") {
   auto x = sph::uniform_random<2>(Vec<2>::Zero(), Vec<2>::Ones(), 100, 3);
   CHECK_NOTHROW(sph::require_distinct_positions<2>(x));
   x[61] = x[17];
-  CHECK_THROWS_WITH(sph::require_distinct_positions<2>(x), Catch::Contains("particles 17 and 61 coincide"));
+  CHECK_THROWS_WITH(sph::require_distinct_positions<2>(x),
+                    Catch::Contains("particles 17 and 61 coincide"));
   // With a minimum separation, on a periodic box, across the periodic face.
   std::vector<Vec<2>> pair = {Vec<2>(0.001, 0.5), Vec<2>(0.998, 0.5), Vec<2>(0.5, 0.5)};
   const auto box = sph::Box<2>::periodic_box(Vec<2>::Zero(), Vec<2>::Ones());
   CHECK_NOTHROW(sph::require_distinct_positions<2>(pair, box, 0.002));
-  CHECK_THROWS_WITH(sph::require_distinct_positions<2>(pair, box, 0.01), Catch::Contains("particles 0 and 1"));
+  CHECK_THROWS_WITH(sph::require_distinct_positions<2>(pair, box, 0.01),
+                    Catch::Contains("particles 0 and 1"));
   CHECK_NOTHROW(sph::require_distinct_positions<2>(pair, sph::Box<2>::open(), 0.01));
 }
 
@@ -234,7 +251,8 @@ TEST_CASE("mass calibration makes the SPH density of a lattice exact", "[initial
   // A 2D square lattice with m = rho dx^2 has the M4 lattice bias; one calibration sweep
   // removes it (every particle is alike), to round-off.
   const auto box = sph::Box<2>::periodic_box(Vec<2>::Zero(), Vec<2>::Ones());
-  auto p = sph::make_particles<2>(sph::lattice<2>(LatticeType::cubic, Vec<2>::Zero(), Vec<2>::Ones(), 0.04), 2.5 * 0.04 * 0.04);
+  auto p = sph::make_particles<2>(
+      sph::lattice<2>(LatticeType::cubic, Vec<2>::Zero(), Vec<2>::Ones(), 0.04), 2.5 * 0.04 * 0.04);
   for (auto& h : p.smoothing_length) h = 1.3 * 0.04;
   sph::NeighbourSearch<2> search;
   search.update(p, box, sph::SmoothingLengthRule::fixed());
@@ -249,13 +267,16 @@ TEST_CASE("mass calibration makes the SPH density of a lattice exact", "[initial
 TEST_CASE("mass calibration across a density jump (pair-averaged form)", "[initial_conditions]") {
   // A periodic 1D tube: density 1 on [0, 1/2) with 200 particles, 1/4 on [1/2, 1) with 50.
   auto x = sph::lattice<1>(LatticeType::cubic, Vec<1>(0.0), Vec<1>(0.5), std::array<int, 1>{200});
-  const auto right = sph::lattice<1>(LatticeType::cubic, Vec<1>(0.5), Vec<1>(1.0), std::array<int, 1>{50});
+  const auto right =
+      sph::lattice<1>(LatticeType::cubic, Vec<1>(0.5), Vec<1>(1.0), std::array<int, 1>{50});
   x.insert(x.end(), right.begin(), right.end());
   auto p = sph::make_particles<1>(x, 1.0);
   auto target = [](const Vec<1>& xi) { return xi[0] < 0.5 ? 1.0 : 0.25; };
-  for (std::size_t i = 0; i < p.size(); ++i) p.mass[i] = target(p.position[i]) * (p.position[i][0] < 0.5 ? 0.0025 : 0.01);
+  for (std::size_t i = 0; i < p.size(); ++i)
+    p.mass[i] = target(p.position[i]) * (p.position[i][0] < 0.5 ? 0.0025 : 0.01);
   sph::NeighbourSearch<1> search;
-  search.update(p, sph::Box<1>::periodic_box(Vec<1>(0.0), Vec<1>(1.0)), sph::SmoothingLengthRule::neighbour_number(5));
+  search.update(p, sph::Box<1>::periodic_box(Vec<1>(0.0), Vec<1>(1.0)),
+                sph::SmoothingLengthRule::neighbour_number(5));
   const auto report = sph::calibrate_mass_to_density<1>(p, search.list(), target);
   INFO("iterations " << report.iterations << ", error before " << report.initial_error << ", after "
                      << report.final_error << " at particle " << report.worst_particle);
@@ -265,19 +286,24 @@ TEST_CASE("mass calibration across a density jump (pair-averaged form)", "[initi
 }
 
 TEST_CASE("mass calibration refuses a bad target", "[initial_conditions]") {
-  auto p = sph::make_particles<1>(sph::lattice<1>(LatticeType::cubic, Vec<1>(0.0), Vec<1>(1.0), 0.1), 0.1);
+  auto p = sph::make_particles<1>(
+      sph::lattice<1>(LatticeType::cubic, Vec<1>(0.0), Vec<1>(1.0), 0.1), 0.1);
   sph::NeighbourSearch<1> search;
-  search.update(p, sph::Box<1>::periodic_box(Vec<1>(0.0), Vec<1>(1.0)), sph::SmoothingLengthRule::neighbour_number(4));
-  CHECK_THROWS_WITH(sph::calibrate_mass_to_density<1>(p, search.list(), [](const Vec<1>& x) { return x[0] < 0.5 ? 1.0 : -1.0; }),
+  search.update(p, sph::Box<1>::periodic_box(Vec<1>(0.0), Vec<1>(1.0)),
+                sph::SmoothingLengthRule::neighbour_number(4));
+  CHECK_THROWS_WITH(sph::calibrate_mass_to_density<1>(
+                        p, search.list(), [](const Vec<1>& x) { return x[0] < 0.5 ? 1.0 : -1.0; }),
                     Catch::Contains("target density at particle 5"));
 }
 
-TEST_CASE("relaxation settles a random set without pairing, deterministically", "[initial_conditions][relax]") {
+TEST_CASE("relaxation settles a random set without pairing, deterministically",
+          "[initial_conditions][relax]") {
   // 2D, 800 particles, 20 neighbours, constant h (Watkins' eq A7 with sigma = 1).
   const int n = 800;
   const double m = 1.0 / n, h = std::sqrt(m * 20 / (4 * std::numbers::pi));
   const auto box = sph::Box<2>::periodic_box(Vec<2>::Zero(), Vec<2>::Ones());
-  auto start = sph::make_particles<2>(sph::uniform_random<2>(Vec<2>::Zero(), Vec<2>::Ones(), n, 11), m);
+  auto start =
+      sph::make_particles<2>(sph::uniform_random<2>(Vec<2>::Zero(), Vec<2>::Ones(), n, 11), m);
   for (auto& hi : start.smoothing_length) hi = h;
   start.velocity[5] = Vec<2>(1, 2);
   auto a = start, b = start;
@@ -288,8 +314,8 @@ TEST_CASE("relaxation settles a random set without pairing, deterministically", 
   omp_set_num_threads(threads);
   const double dx = std::sqrt(m);
   const double closest = smallest_separation<2>(a.position, box);
-  INFO("iterations " << ra.iterations << ", scatter " << ra.initial.relative << " -> " << ra.final.relative
-                     << ", closest pair " << closest / dx << " dx");
+  INFO("iterations " << ra.iterations << ", scatter " << ra.initial.relative << " -> "
+                     << ra.final.relative << ", closest pair " << closest / dx << " dx");
   CHECK(ra.converged);
   CHECK(ra.final.relative < 0.05 * ra.initial.relative);
   CHECK(ra.final.relative < 0.01);
@@ -300,7 +326,8 @@ TEST_CASE("relaxation settles a random set without pairing, deterministically", 
   sph::NeighbourSearch<2> search;
   search.update(a, box, sph::SmoothingLengthRule::fixed());
   sph::compute_density(a, search.list(), sph::DensityForm::watkins());
-  for (std::size_t i = 0; i < a.size(); ++i) CHECK(a.density[i] == Approx(stored[i]).epsilon(1e-14));
+  for (std::size_t i = 0; i < a.size(); ++i)
+    CHECK(a.density[i] == Approx(stored[i]).epsilon(1e-14));
   // Same result on one thread; velocities untouched; positions in the box.
   CHECK(a.position == b.position);
   CHECK(ra.history == rb.history);
@@ -309,11 +336,13 @@ TEST_CASE("relaxation settles a random set without pairing, deterministically", 
 }
 
 TEST_CASE("relaxation refuses an open box and bad options", "[initial_conditions][relax]") {
-  auto p = sph::make_particles<2>(sph::uniform_random<2>(Vec<2>::Zero(), Vec<2>::Ones(), 50, 1), 0.02);
+  auto p =
+      sph::make_particles<2>(sph::uniform_random<2>(Vec<2>::Zero(), Vec<2>::Ones(), 50, 1), 0.02);
   sph::Box<2> half_open{Vec<2>::Zero(), Vec<2>::Ones(), {true, false}};
   CHECK_THROWS_WITH(sph::relax_to_uniform_density(p, half_open), Catch::Contains("axis y is open"));
   sph::RelaxOptions bad;
   bad.momentum = 1.0;
-  CHECK_THROWS_AS(sph::relax_to_uniform_density(p, sph::Box<2>::periodic_box(Vec<2>::Zero(), Vec<2>::Ones()), bad),
+  CHECK_THROWS_AS(sph::relax_to_uniform_density(
+                      p, sph::Box<2>::periodic_box(Vec<2>::Zero(), Vec<2>::Ones()), bad),
                   sph::Error);
 }

@@ -65,7 +65,8 @@ TEST_CASE("M4 cubic spline: W(0) equals the tabulated normalisation", "[kernel]"
   CHECK(sph::Kernel<2>::value(0, h) == Approx(10.0 / (7.0 * pi) / (h * h)));
   CHECK(sph::Kernel<3>::value(0, h) == Approx(1.0 / (pi * h * h * h)));
   // Continuity of W and dW/dq at the knot q = 1.
-  const auto below = sph::CubicSpline::evaluate(1.0 - 1e-12), above = sph::CubicSpline::evaluate(1.0);
+  const auto below = sph::CubicSpline::evaluate(1.0 - 1e-12),
+             above = sph::CubicSpline::evaluate(1.0);
   CHECK(below.w == Approx(above.w));
   CHECK(below.dw_dq == Approx(above.dw_dq));
 }

@@ -109,10 +109,11 @@ TEST_CASE("Lagrangian 1D: the Sod tube converges to the exact Riemann solution",
     Lagrangian1D tube = sod_tube(resolutions[k]);
     const long steps = tube.run_until(0.2);
     errors[k] = sod_errors(tube);
-    std::printf("Sod, %d zones, t = 0.2 (%ld steps): L1 error rho %.3e, P %.3e, u %.3e; "
-                "contact node off by %.2e\n",
-                resolutions[k], steps, errors[k].density, errors[k].pressure, errors[k].velocity,
-                errors[k].contact);
+    std::printf(
+        "Sod, %d zones, t = 0.2 (%ld steps): L1 error rho %.3e, P %.3e, u %.3e; "
+        "contact node off by %.2e\n",
+        resolutions[k], steps, errors[k].density, errors[k].pressure, errors[k].velocity,
+        errors[k].contact);
   }
   const double order = std::log2(errors[0].density / errors[1].density) / 2.0;
   std::printf("Sod: L1(rho) falls by %.2f from 200 to 800 zones (order %.2f)\n",
@@ -132,17 +133,17 @@ TEST_CASE("Lagrangian 1D: total energy is conserved to round-off", "[lagrangian]
     const long steps = tube.run_until(0.2, [&](const Lagrangian1D& s) {
       worst = std::max(worst, relative_change(s.total_energy(), E0));
     });
-    std::printf("Sod, 800 zones: worst relative energy change over %ld steps %.2e "
-                "(E_kin %.4f, E_th %.4f)\n",
-                steps, worst, tube.kinetic_energy(), tube.thermal_energy());
+    std::printf(
+        "Sod, 800 zones: worst relative energy change over %ld steps %.2e "
+        "(E_kin %.4f, E_th %.4f)\n",
+        steps, worst, tube.kinetic_energy(), tube.thermal_energy());
     CHECK(worst < 1e-12);
   }
   SECTION("two slabs with free ends to t = 20") {
     // rho = 0.5 on [-5, -4), 1/16 on [-4, 4], e = 0.01, gamma = 5/3, vacuum outside.
     Lagrangian1D tube = Lagrangian1D::from_profile(
         LagrangianGeometry::planar, Lagrangian1D::uniform_edges({-5.0, -4.0, 4.0}, {100, 800}),
-        [](double z) { return z < -4.0 ? 0.5 : 1.0 / 16.0; }, zero,
-        [](double) { return 0.01; });
+        [](double z) { return z < -4.0 ? 0.5 : 1.0 / 16.0; }, zero, [](double) { return 0.01; });
     const double E0 = tube.total_energy(), mass = tube.total_mass();
     double worst = 0, worst_momentum = 0;
     const long steps = tube.run_until(20.0, [&](const Lagrangian1D& s) {
@@ -150,11 +151,12 @@ TEST_CASE("Lagrangian 1D: total energy is conserved to round-off", "[lagrangian]
       worst_momentum = std::max(worst_momentum, std::abs(s.momentum()));
     });
     const double speed = std::sqrt(2.0 * tube.kinetic_energy() / mass);
-    std::printf("two slabs, free ends, t = 20 (%ld steps): worst relative energy change %.2e, "
-                "worst |momentum| %.2e (mass x rms speed %.2e); ends at %.3f and %.3f; "
-                "E_kin %.5f, E_th %.5f of E %.5f\n",
-                steps, worst, worst_momentum, mass * speed, tube.node_radius().front(),
-                tube.node_radius().back(), tube.kinetic_energy(), tube.thermal_energy(), E0);
+    std::printf(
+        "two slabs, free ends, t = 20 (%ld steps): worst relative energy change %.2e, "
+        "worst |momentum| %.2e (mass x rms speed %.2e); ends at %.3f and %.3f; "
+        "E_kin %.5f, E_th %.5f of E %.5f\n",
+        steps, worst, worst_momentum, mass * speed, tube.node_radius().front(),
+        tube.node_radius().back(), tube.kinetic_energy(), tube.thermal_energy(), E0);
     CHECK(worst < 1e-12);
     CHECK(worst_momentum < 1e-14 * mass * speed);
     CHECK(tube.total_mass() == mass);
@@ -195,10 +197,10 @@ TEST_CASE("Lagrangian 1D: cold homologous collapse coasts, r = r0 (1 - 2t)", "[l
       worst_rho =
           std::max(worst_rho, std::abs(gas.density(i) * std::pow(shrink, c.dimensions) - 1.0));
     }
-    std::printf("coasting collapse, %s, 200 zones, t = 0.4 (%ld steps): interior worst relative "
-                "error r %.2e, rho %.2e (rho = %.1f); energy change %.2e\n",
-                c.name, steps, worst_r, worst_rho, gas.density(0),
-                relative_change(gas.total_energy(), E0));
+    std::printf(
+        "coasting collapse, %s, 200 zones, t = 0.4 (%ld steps): interior worst relative "
+        "error r %.2e, rho %.2e (rho = %.1f); energy change %.2e\n",
+        c.name, steps, worst_r, worst_rho, gas.density(0), relative_change(gas.total_energy(), E0));
     CHECK(worst_r < 1e-10);   // measured 1.5e-14: no force, exact coasting
     CHECK(worst_rho < 1e-9);  // measured 8e-12
     CHECK(relative_change(gas.total_energy(), E0) < 1e-13);
@@ -225,10 +227,10 @@ TEST_CASE("Lagrangian 1D: viscous heating of a smooth compression vanishes under
       mass += sphere.zone_mass()[i];
     }
     heating[k] = excess / mass;
-    std::printf("compressing sphere, q on, %d zones, t = 0.3: inner half e / e_adiabat - 1 = "
-                "%.3e, central rho %.3f, energy change %.2e\n",
-                resolutions[k], heating[k], sphere.density(0),
-                relative_change(sphere.total_energy(), E0));
+    std::printf(
+        "compressing sphere, q on, %d zones, t = 0.3: inner half e / e_adiabat - 1 = "
+        "%.3e, central rho %.3f, energy change %.2e\n",
+        resolutions[k], heating[k], sphere.density(0), relative_change(sphere.total_energy(), E0));
     CHECK(relative_change(sphere.total_energy(), E0) < 1e-12);
   }
   std::printf("compressing sphere: heating falls by %.2f from 100 to 400 zones\n",
@@ -257,8 +259,10 @@ TEST_CASE("Lagrangian 1D: viscous heating of a smooth compression vanishes under
   for (std::size_t i = 0; limited.mass_inside(i + 1) <= 0.5; ++i) {
     worst = std::max(worst, std::abs(limited.internal_energy(i) / inviscid.internal_energy(i) - 1));
   }
-  std::printf("compressing sphere, q with the homologous limiter, 100 zones: inner half "
-              "max |e / e_without_q - 1| = %.2e\n", worst);
+  std::printf(
+      "compressing sphere, q with the homologous limiter, 100 zones: inner half "
+      "max |e / e_without_q - 1| = %.2e\n",
+      worst);
   CHECK(worst < 1e-9);
 }
 
@@ -292,11 +296,12 @@ TEST_CASE("Lagrangian 1D: a cold uniform sphere falls freely under its own gravi
       worst_homology = std::max(worst_homology, std::abs(shrink / ratio - 1.0));
     }
   }
-  std::printf("free fall, %d zones, to 0.95 t_ff (%ld steps): half-mass shell at r/r0 = %.4f, "
-              "worst relative error %.2e; homology kept to %.2e; worst energy change %.2e "
-              "(E_kin %.4f, W %.4f)\n",
-              zones, sphere.steps(), sphere.node_radius()[half] / r0, worst, worst_homology,
-              worst_energy, sphere.kinetic_energy(), sphere.potential_energy());
+  std::printf(
+      "free fall, %d zones, to 0.95 t_ff (%ld steps): half-mass shell at r/r0 = %.4f, "
+      "worst relative error %.2e; homology kept to %.2e; worst energy change %.2e "
+      "(E_kin %.4f, W %.4f)\n",
+      zones, sphere.steps(), sphere.node_radius()[half] / r0, worst, worst_homology, worst_energy,
+      sphere.kinetic_energy(), sphere.potential_energy());
   CHECK(worst < 1e-3);
   CHECK(worst_homology < 1e-6);
   CHECK(worst_energy < 1e-12);
@@ -322,10 +327,11 @@ TEST_CASE("Lagrangian 1D: the Evrard collapse", "[lagrangian]") {
   for (int k = 1; k <= N; ++k) sum += std::sqrt(double(k));
   const double W_discrete = -(sum - 0.5 * std::sqrt(double(N))) / std::pow(N, 1.5);
   const double W0 = sphere.potential_energy(), E0 = sphere.total_energy();
-  std::printf("Evrard, %d zones: W(0) = %.8f; discrete formula %.8f; continuum -2/3 "
-              "(relative difference %.2e); r_1 = %.6f (sqrt(1/N) = %.6f)\n",
-              N, W0, W_discrete, std::abs(W0 / (-2.0 / 3.0) - 1.0),
-              sphere.node_radius()[1], std::sqrt(1.0 / N));
+  std::printf(
+      "Evrard, %d zones: W(0) = %.8f; discrete formula %.8f; continuum -2/3 "
+      "(relative difference %.2e); r_1 = %.6f (sqrt(1/N) = %.6f)\n",
+      N, W0, W_discrete, std::abs(W0 / (-2.0 / 3.0) - 1.0), sphere.node_radius()[1],
+      std::sqrt(1.0 / N));
   CHECK(W0 == Approx(W_discrete).epsilon(1e-12));
   CHECK(W0 == Approx(-2.0 / 3.0).epsilon(1e-4));
   CHECK(sphere.thermal_energy() == Approx(0.05).epsilon(1e-12));
@@ -348,10 +354,11 @@ TEST_CASE("Lagrangian 1D: the Evrard collapse", "[lagrangian]") {
   std::size_t shock = 0;  // the zone of largest q
   for (std::size_t i = 0; i < p.radius.size(); ++i)
     if (p.viscous_pressure[i] > p.viscous_pressure[shock]) shock = i;
-  std::printf("Evrard at t = 0.8 (%ld steps): E_kin %.4f, E_th %.4f, W %.4f, worst relative "
-              "energy change %.2e; shock (largest q) at r = %.3f\n",
-              steps, sphere.kinetic_energy(), sphere.thermal_energy(), sphere.potential_energy(),
-              worst, p.radius[shock]);
+  std::printf(
+      "Evrard at t = 0.8 (%ld steps): E_kin %.4f, E_th %.4f, W %.4f, worst relative "
+      "energy change %.2e; shock (largest q) at r = %.3f\n",
+      steps, sphere.kinetic_energy(), sphere.thermal_energy(), sphere.potential_energy(), worst,
+      p.radius[shock]);
   std::printf("  r        rho        u         P\n");
   for (double r : {0.02, 0.05, 0.1, 0.12, 0.14, 0.16, 0.2, 0.3, 0.5, 0.7, 0.9}) {
     std::size_t i = 0;
@@ -365,11 +372,12 @@ TEST_CASE("Lagrangian 1D: the Evrard collapse", "[lagrangian]") {
   CHECK(sphere.kinetic_energy() > 0.0);
 
   sphere.run_until(2.0, watch);
-  std::printf("Evrard to t = 2: peak central density %.4g at t = %.3f, peak E_kin %.4f at "
-              "t = %.3f; at t = 2: E_kin %.4f, E_th %.4f, W %.4f; worst relative energy change "
-              "%.2e\n",
-              peak_density, peak_time, peak_kinetic, peak_kinetic_time, sphere.kinetic_energy(),
-              sphere.thermal_energy(), sphere.potential_energy(), worst);
+  std::printf(
+      "Evrard to t = 2: peak central density %.4g at t = %.3f, peak E_kin %.4f at "
+      "t = %.3f; at t = 2: E_kin %.4f, E_th %.4f, W %.4f; worst relative energy change "
+      "%.2e\n",
+      peak_density, peak_time, peak_kinetic, peak_kinetic_time, sphere.kinetic_energy(),
+      sphere.thermal_energy(), sphere.potential_energy(), worst);
   CHECK(worst < 1e-12);
 }
 
@@ -414,15 +422,14 @@ TEST_CASE("Lagrangian 1D: bad input is reported with a clear message", "[lagrang
                       Contains("sizes do not match"));
   }
   SECTION("the gas") {
-    CHECK_THROWS_WITH(
-        Lagrangian1D::from_profile(planar, edges, [](double x) { return x < 0.5 ? 1.0 : -1.0; },
-                                   zero, one),
-        Contains("density(r) = -1") && Contains("must be positive"));
+    CHECK_THROWS_WITH(Lagrangian1D::from_profile(
+                          planar, edges, [](double x) { return x < 0.5 ? 1.0 : -1.0; }, zero, one),
+                      Contains("density(r) = -1") && Contains("must be positive"));
     CHECK_THROWS_WITH(Lagrangian1D::from_profile(planar, edges, one, zero, zero),
                       Contains("internal energy e(r) = 0"));
-    CHECK_THROWS_WITH(
-        Lagrangian1D::from_profile(planar, edges, one, [](double) { return std::nan(""); }, one),
-        Contains("node 0 velocity is not finite"));
+    CHECK_THROWS_WITH(Lagrangian1D::from_profile(
+                          planar, edges, one, [](double) { return std::nan(""); }, one),
+                      Contains("node 0 velocity is not finite"));
     const std::vector<double> r{0.0, 1.0, 2.0}, u{0.0, 0.0, 0.0};
     CHECK_THROWS_WITH(Lagrangian1D(planar, r, u, {1.0, 0.0}, {1.0, 1.0}),
                       Contains("zone 1 has mass 0"));
@@ -446,9 +453,8 @@ TEST_CASE("Lagrangian 1D: bad input is reported with a clear message", "[lagrang
   }
   SECTION("a zone that inverts or a negative energy stops the run, naming the zone") {
     // A colliding flow stepped far beyond its stable step: the nodes cross.
-    Lagrangian1D gas = Lagrangian1D::from_profile(planar, edges, one,
-                                                  [](double x) { return x < 0.5 ? 1.0 : -1.0; },
-                                                  one);
+    Lagrangian1D gas = Lagrangian1D::from_profile(
+        planar, edges, one, [](double x) { return x < 0.5 ? 1.0 : -1.0; }, one);
     const double E0 = gas.total_energy();
     CHECK_THROWS_WITH(gas.advance(1.0), Contains("zone") && Contains("inverted") &&
                                             Contains("negative volume") && Contains("t = 0"));
@@ -485,8 +491,9 @@ TEST_CASE("Lagrangian 1D: cost per zone and step", "[lagrangian]") {
   for (int k = 0; k < 500; ++k) tube.step();
   const double seconds =
       std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
-  std::printf("cost: 10^4 zones, 500 steps in %.3f s: %.1f ns per zone and step; reached "
-              "t = %.3g\n",
-              seconds, seconds / (500.0 * 1e4) * 1e9, tube.time());
+  std::printf(
+      "cost: 10^4 zones, 500 steps in %.3f s: %.1f ns per zone and step; reached "
+      "t = %.3g\n",
+      seconds, seconds / (500.0 * 1e4) * 1e9, tube.time());
   CHECK(tube.time() > 0.0);
 }

@@ -27,7 +27,8 @@ TEST_CASE("packed images add and subtract axis by axis, negative shifts included
             for (int b2 = -60; b2 <= 60; b2 += 19) {
               const auto a = sph::pack_image<3>({a0, a1, a2}), b = sph::pack_image<3>({b0, b1, b2});
               wrong += sph::add_images(a, b) != sph::pack_image<3>({a0 + b0, a1 + b1, a2 + b2});
-              wrong += sph::subtract_images(a, b) != sph::pack_image<3>({a0 - b0, a1 - b1, a2 - b2});
+              wrong +=
+                  sph::subtract_images(a, b) != sph::pack_image<3>({a0 - b0, a1 - b1, a2 - b2});
               wrong += sph::mirror_image<3>(a) != sph::pack_image<3>({-a0, -a1, -a2});
             }
   CHECK(wrong == 0);
@@ -56,7 +57,8 @@ TEST_CASE("the local motion bound holds for every pair closer than the cell size
   CHECK(s >= 0.11);
   // A value per particle (a smooth field plus noise, as h is) and its smallest nearby value.
   std::vector<double> value(n), least;
-  for (std::size_t i = 0; i < n; ++i) value[i] = 1.0 + 0.3 * std::cos(5.0 * x[i][0]) + 0.05 * unit(rng);
+  for (std::size_t i = 0; i < n; ++i)
+    value[i] = 1.0 + 0.3 * std::cos(5.0 * x[i][0]) + 0.05 * unit(rng);
   motion.neighbourhood_min(value.data(), least);
   REQUIRE(least.size() == n);
   double worst = -1, tightest = 1e300;
@@ -68,7 +70,9 @@ TEST_CASE("the local motion bound holds for every pair closer than the cell size
       sph::Vec<3> r = box.separation(x[i], x[j]);
       if (i == j || r.norm() >= s) continue;
       ++pairs;
-      const double diff = std::sqrt(std::pow(d[0][i] - d[0][j], 2) + std::pow(d[1][i] - d[1][j], 2) + std::pow(d[2][i] - d[2][j], 2));
+      const double diff =
+          std::sqrt(std::pow(d[0][i] - d[0][j], 2) + std::pow(d[1][i] - d[1][j], 2) +
+                    std::pow(d[2][i] - d[2][j], 2));
       worst = std::max(worst, diff - motion.bound(i));
       tightest = std::min(tightest, motion.bound(i));
       above_floor += least[i] > value[j];
@@ -81,8 +85,10 @@ TEST_CASE("the local motion bound holds for every pair closer than the cell size
   // it is not simply the global minimum (most particles have a larger one).
   CHECK(above_floor == 0);
   CHECK(below_own > 0);
-  CHECK(*std::max_element(least.begin(), least.end()) > *std::min_element(value.begin(), value.end()) + 0.1);
-  // The common drift (0.3, -0.2, 0) does not enter the bound: it stays of the order of the shear and noise.
+  CHECK(*std::max_element(least.begin(), least.end()) >
+        *std::min_element(value.begin(), value.end()) + 0.1);
+  // The common drift (0.3, -0.2, 0) does not enter the bound: it stays of the order of the shear
+  // and noise.
   CHECK(tightest < 0.08);
 }
 
@@ -94,18 +100,23 @@ TEST_CASE("the SIMD compaction of kept pairs equals the plain loop", "[neighbour
     std::vector<sph::Image> image(n);
     std::vector<double> r2(n);
     std::vector<sph::Image> wrapped(300);
-    for (auto& w : wrapped) w = sph::pack_image<3>({int(unit(rng) * 5) - 2, int(unit(rng) * 5) - 2, 0});
+    for (auto& w : wrapped)
+      w = sph::pack_image<3>({int(unit(rng) * 5) - 2, int(unit(rng) * 5) - 2, 0});
     for (std::size_t k = 0; k < n; ++k) {
       index[k] = static_cast<std::uint32_t>(unit(rng) * 300);
-      image[k] = sph::pack_image<3>({int(unit(rng) * 3) - 1, int(unit(rng) * 3) - 1, int(unit(rng) * 3) - 1});
+      image[k] = sph::pack_image<3>(
+          {int(unit(rng) * 3) - 1, int(unit(rng) * 3) - 1, int(unit(rng) * 3) - 1});
       r2[k] = unit(rng);
     }
-    for (const sph::Image* w : {static_cast<const sph::Image*>(nullptr), static_cast<const sph::Image*>(wrapped.data())}) {
+    for (const sph::Image* w : {static_cast<const sph::Image*>(nullptr),
+                                static_cast<const sph::Image*>(wrapped.data())}) {
       std::vector<sph::Neighbour> a(n + 8), b(n + 8);
       const sph::Image own = wrapped[17];
       double fa = -1, fb = -2;
-      const std::size_t ka = sph::detail::keep_closer<false>(index.data(), image.data(), r2.data(), n, 0.6, w, own, a.data(), fa);
-      const std::size_t kb = sph::detail::keep_closer<true>(index.data(), image.data(), r2.data(), n, 0.6, w, own, b.data(), fb);
+      const std::size_t ka = sph::detail::keep_closer<false>(index.data(), image.data(), r2.data(),
+                                                             n, 0.6, w, own, a.data(), fa);
+      const std::size_t kb = sph::detail::keep_closer<true>(index.data(), image.data(), r2.data(),
+                                                            n, 0.6, w, own, b.data(), fb);
       REQUIRE(ka == kb);
       std::size_t expected = 0;
       double farthest = 0;
@@ -124,8 +135,10 @@ TEST_CASE("the SIMD compaction of kept pairs equals the plain loop", "[neighbour
   }
 }
 
-TEST_CASE("a search that keeps the candidates of resting gas and searches the moving gas again equals brute force",
-          "[neighbours]") {
+TEST_CASE(
+    "a search that keeps the candidates of resting gas and searches the moving gas again equals "
+    "brute force",
+    "[neighbours]") {
   // A 3D box periodic in y and z: the left half rests, the right half streams in +x and wraps
   // across the y faces with a shear, so its particles must be searched again while the
   // resting ones keep their candidates.  After every update the list equals brute force.
@@ -133,8 +146,10 @@ TEST_CASE("a search that keeps the candidates of resting gas and searches the mo
   std::mt19937_64 rng(23);
   std::uniform_real_distribution<double> unit(0.0, 1.0);
   sph::Particles<3> p;
-  for (int i = 0; i < 500; ++i) p.add(sph::Vec<3>(unit(rng), 0.25 * unit(rng), 0.25 * unit(rng)), sph::Vec<3>::Zero(), 1.0);
-  for (auto rule : {sph::SmoothingLengthRule::neighbour_number(30, 3), sph::SmoothingLengthRule::fixed()}) {
+  for (int i = 0; i < 500; ++i)
+    p.add(sph::Vec<3>(unit(rng), 0.25 * unit(rng), 0.25 * unit(rng)), sph::Vec<3>::Zero(), 1.0);
+  for (auto rule :
+       {sph::SmoothingLengthRule::neighbour_number(30, 3), sph::SmoothingLengthRule::fixed()}) {
     for (auto& h : p.smoothing_length) h = 0.045;
     sph::NeighbourSearch<3> search;
     for (int step = 0; step < 15; ++step) {
@@ -146,14 +161,16 @@ TEST_CASE("a search that keeps the candidates of resting gas and searches the mo
       search.update(p, box, rule);
       REQUIRE(listed(search.list(), p.size()) == brute_force(p, box));
     }
-    INFO("updates that searched " << search.searches() << ", full " << search.full_searches() << ", reused "
-                                  << search.reuses() << ", particle searches " << search.particle_searches());
+    INFO("updates that searched " << search.searches() << ", full " << search.full_searches()
+                                  << ", reused " << search.reuses() << ", particle searches "
+                                  << search.particle_searches());
     CHECK(search.full_searches() == 1);
     CHECK(search.searches() > search.full_searches());  // partial searches happened
     // The resting half far from the interface was not searched again: each partial search
     // took well under the whole set.
     const long partial = search.particle_searches() - static_cast<long>(p.size());
-    CHECK(partial < static_cast<long>(0.6 * static_cast<double>(p.size()) * static_cast<double>(search.searches() - 1)));
+    CHECK(partial < static_cast<long>(0.6 * static_cast<double>(p.size()) *
+                                      static_cast<double>(search.searches() - 1)));
     // With fixed h only the motion decides, and some updates need no search at all (the count
     // rule also searches when a count leaves its tolerance and the new h would reach past the
     // candidates, which at this sliding interface happens every step).

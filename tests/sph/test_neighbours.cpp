@@ -46,7 +46,8 @@ void compare_with_brute_force(const sph::Box<D>& box, std::size_t n, double h_sp
 
 }  // namespace
 
-TEST_CASE("neighbour list equals brute force, open and periodic, 100x spread of h", "[neighbours]") {
+TEST_CASE("neighbour list equals brute force, open and periodic, 100x spread of h",
+          "[neighbours]") {
   for (bool periodic : {false, true}) {
     SECTION(periodic ? "periodic" : "open") {
       sph::Box<1> b1{sph::Vec<1>(0.0), sph::Vec<1>(1.0), {periodic}};
@@ -70,7 +71,8 @@ TEST_CASE("neighbour list in periodic tubes narrower than the kernel support", "
   compare_with_brute_force<2>(strip, 150, 10.0, 5);
 }
 
-TEST_CASE("reused candidates give the brute-force list as particles move and wrap", "[neighbours]") {
+TEST_CASE("reused candidates give the brute-force list as particles move and wrap",
+          "[neighbours]") {
   // A 3D tube periodic across (0.06 wide, narrower than 2h) and along x, particles drifting at
   // a uniform velocity (so they cross the periodic faces) plus a small random jitter each step.
   // After every update the list must equal brute force, whether the update reused the old
@@ -82,7 +84,8 @@ TEST_CASE("reused candidates give the brute-force list as particles move and wra
   for (int i = 0; i < 300; ++i) {
     p.add(sph::Vec<3>(unit(rng), 0.06 * unit(rng), 0.06 * unit(rng)), sph::Vec<3>::Zero(), 1.0);
   }
-  for (auto rule : {sph::SmoothingLengthRule::neighbour_number(30, 2), sph::SmoothingLengthRule::fixed()}) {
+  for (auto rule :
+       {sph::SmoothingLengthRule::neighbour_number(30, 2), sph::SmoothingLengthRule::fixed()}) {
     // (h = 0.029, not 0.03: at 2h = 0.06, exactly the tube's width, each particle's own image
     // would sit on the kernel's edge and round-off would decide whether it counts.)
     for (auto& h : p.smoothing_length) h = 0.029;

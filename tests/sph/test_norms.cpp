@@ -26,7 +26,8 @@ std::vector<Vec<1>> line_positions(int n) {
 double linear(const Vec<1>& x) { return 2.0 * x[0] + 1.0; }
 
 /// Reference values plus the given errors.
-std::vector<double> values_with_errors(const std::vector<Vec<1>>& x, const std::vector<double>& errors) {
+std::vector<double> values_with_errors(const std::vector<Vec<1>>& x,
+                                       const std::vector<double>& errors) {
   std::vector<double> f(x.size());
   for (std::size_t i = 0; i < x.size(); ++i) f[i] = linear(x[i]) + errors[i];
   return f;
@@ -66,7 +67,8 @@ TEST_CASE("Selections: an x-range, a mask, both", "[norms]") {
     CHECK(n.Linf == Approx(4.0));
   }
   SECTION("mask") {
-    const auto n = sph::error_norms<1>("f", x, f, linear, sph::Selection::masked({true, false, false, false, false, true}));
+    const auto n = sph::error_norms<1>(
+        "f", x, f, linear, sph::Selection::masked({true, false, false, false, false, true}));
     CHECK(n.count == 2);
     CHECK(n.L1 == Approx(3.5));
   }
@@ -99,7 +101,8 @@ TEST_CASE("A selection on the x axis of 3D particles (a shock tube in a box)", "
   CHECK(sph::error_norms<3>("rho", x, f, one, sph::Selection::range(0.0, 0.45)).Linf == 0.0);
   CHECK(sph::error_norms<3>("rho", x, f, one, sph::Selection::range(0.45, 1.0)).L1 == Approx(0.5));
   CHECK(sph::error_norms<3>("rho", x, f, one, sph::Selection::range(0.4, 0.6, 1)).count == 10);
-  CHECK_THROWS_WITH(sph::error_norms<3>("rho", x, f, one, sph::Selection::range(0, 1, 3)), Catch::Contains("axis 3"));
+  CHECK_THROWS_WITH(sph::error_norms<3>("rho", x, f, one, sph::Selection::range(0, 1, 3)),
+                    Catch::Contains("axis 3"));
 }
 
 TEST_CASE("NaN never passes as a small error", "[norms]") {
@@ -121,15 +124,18 @@ TEST_CASE("NaN never passes as a small error", "[norms]") {
   }
   SECTION("NaN in the reference") {
     const auto bad = [](const Vec<1>& y) { return y[0] > 2.5 ? std::nan("") : linear(y); };
-    CHECK_THROWS_WITH(sph::error_norms<1>("density", x, f, bad), Catch::Contains("reference is nan at particle 3"));
+    CHECK_THROWS_WITH(sph::error_norms<1>("density", x, f, bad),
+                      Catch::Contains("reference is nan at particle 3"));
   }
   SECTION("relative scatter") {
     f[2] = std::nan("");
-    CHECK_THROWS_WITH(sph::relative_scatter<1>("v", x, f, linear, 0.0, 10.0), Catch::Contains("particle 2"));
+    CHECK_THROWS_WITH(sph::relative_scatter<1>("v", x, f, linear, 0.0, 10.0),
+                      Catch::Contains("particle 2"));
   }
   SECTION("sizes must agree") {
     f.pop_back();
-    CHECK_THROWS_WITH(sph::error_norms<1>("density", x, f, linear), Catch::Contains("4 values for 5 positions"));
+    CHECK_THROWS_WITH(sph::error_norms<1>("density", x, f, linear),
+                      Catch::Contains("4 values for 5 positions"));
   }
 }
 
@@ -143,9 +149,11 @@ TEST_CASE("Relative scatter in a region", "[norms]") {
     f[i] = linear(x[i]) * (1.0 + deviation);
   }
   CHECK(sph::relative_scatter<1>("v", x, f, linear, 2.0, 5.0) == Approx(0.15).epsilon(1e-12));
-  CHECK(sph::relative_scatter<1>("v", x, f, linear, sph::Selection::range(0.0, 1.0)) == Approx(0.5).epsilon(1e-12));
+  CHECK(sph::relative_scatter<1>("v", x, f, linear, sph::Selection::range(0.0, 1.0)) ==
+        Approx(0.5).epsilon(1e-12));
   const auto zero = [](const Vec<1>&) { return 0.0; };
-  CHECK_THROWS_WITH(sph::relative_scatter<1>("v", x, f, zero, 0.0, 3.0), Catch::Contains("reference is 0 at particle 0"));
+  CHECK_THROWS_WITH(sph::relative_scatter<1>("v", x, f, zero, 0.0, 3.0),
+                    Catch::Contains("reference is 0 at particle 0"));
 }
 
 TEST_CASE("component() and Tolerance", "[norms]") {
@@ -201,8 +209,9 @@ TEST_CASE("diagnostics: check_finite names the pass, the particle and the field"
   CHECK_NOTHROW(sph::check_all_finite(p, "initial conditions"));
   p.density[1] = std::nan("");
   CHECK_NOTHROW(sph::check_finite(p, {sph::Field::pressure}, "equation of state"));
-  CHECK_THROWS_WITH(sph::check_finite(p, {sph::Field::density}, "density pass"),
-                    Catch::Contains("density pass: particle 1 at (3") && Catch::Contains("density = nan"));
+  CHECK_THROWS_WITH(
+      sph::check_finite(p, {sph::Field::density}, "density pass"),
+      Catch::Contains("density pass: particle 1 at (3") && Catch::Contains("density = nan"));
   p.acceleration[0] = Vec<2>(INFINITY, 0);
   CHECK_THROWS_WITH(sph::check_finite(p, {sph::Field::acceleration}, "force pass"),
                     Catch::Contains("particle 0") && Catch::Contains("acceleration"));

@@ -149,7 +149,8 @@ TEST_CASE("on a periodic axis positions are unwrapped", "[penetration]") {
 TEST_CASE("bad input stops with a message", "[penetration]") {
   const auto x0 = line(5);
   auto x = line(4);
-  CHECK_THROWS_WITH(sph::order_inversions<1>(x0, x, open_line), Catch::Contains("5 initial positions for 4"));
+  CHECK_THROWS_WITH(sph::order_inversions<1>(x0, x, open_line),
+                    Catch::Contains("5 initial positions for 4"));
   x = x0;
   x[2][0] = std::nan("");
   CHECK_THROWS_WITH(sph::order_inversions<1>(x0, x, open_line), Catch::Contains("particle 2"));

@@ -49,15 +49,16 @@ TEST_CASE("a particle bounces off the reflecting sphere as its mirror image", "[
   CHECK(x.tail<2>().norm() == 0.0);
 }
 
-TEST_CASE("bounces off the sphere keep the speed and the angular momentum about its centre", "[boundaries]") {
+TEST_CASE("bounces off the sphere keep the speed and the angular momentum about its centre",
+          "[boundaries]") {
   // Oblique paths that hit the wall many times.  The wall's kick is radial, at the point where
   // the path crossed it, so |v| and r x v are kept exactly in exact arithmetic; we allow the
   // round-off of a thousand steps (measured 2e-15).
   sph::Particles<3> p;
   p.add(sph::Vec<3>(0.1, -0.2, 0.3), sph::Vec<3>(0.7, 0.4, -0.2), 1.0);
   p.add(sph::Vec<3>(-0.5, 0.1, 0.0), sph::Vec<3>(-0.3, 0.9, 0.5), 2.0);
-  sph::Simulation<FreeInSphere> sim(p, sph::Box<3>::open(), sph::ReflectingSphere<3>(sph::Vec<3>::Zero(), 1.0),
-                                    fixed_step(0.01));
+  sph::Simulation<FreeInSphere> sim(
+      p, sph::Box<3>::open(), sph::ReflectingSphere<3>(sph::Vec<3>::Zero(), 1.0), fixed_step(0.01));
   const auto L = [&](std::size_t i) {
     return sim.particles().position[i].cross(sim.particles().velocity[i]).eval();
   };
@@ -69,7 +70,8 @@ TEST_CASE("bounces off the sphere keep the speed and the angular momentum about 
   });
   const double de = std::abs(sph::kinetic_energy(sim.particles()) - e0) / e0;
   const double dl = std::max((L(0) - L0).norm() / L0.norm(), (L(1) - L1).norm() / L1.norm());
-  INFO("relative change of kinetic energy " << de << ", of angular momentum " << dl << ", farthest " << farthest);
+  INFO("relative change of kinetic energy " << de << ", of angular momentum " << dl << ", farthest "
+                                            << farthest);
   CHECK(de <= 1e-13);
   CHECK(dl <= 1e-12);
   CHECK(farthest <= 1.0);
@@ -81,22 +83,27 @@ TEST_CASE("a hot gas stays inside the reflecting sphere and keeps its energy", "
   // accuracy (the wall does no work): measured 2.4e-3 at t = 1 (the gas has met the wall and
   // come back), allowed 1e-2.
   auto points = sph::cut_sphere<3>(
-      sph::lattice<3>(sph::LatticeType::body_centred, sph::Vec<3>::Constant(-0.5), sph::Vec<3>::Constant(0.5), 0.1),
+      sph::lattice<3>(sph::LatticeType::body_centred, sph::Vec<3>::Constant(-0.5),
+                      sph::Vec<3>::Constant(0.5), 0.1),
       sph::Vec<3>::Zero(), 0.5);
-  const auto particles = sph::make_particles<3>(points, 1.0 / static_cast<double>(points.size()), 1.0);
+  const auto particles =
+      sph::make_particles<3>(points, 1.0 / static_cast<double>(points.size()), 1.0);
   sph::Settings settings;
   settings.smoothing = sph::SmoothingLengthRule::neighbour_number(40, 2);
   sph::Simulation<GasInSphere> sim(particles, sph::Box<3>::open(), sph::IdealGas(5.0 / 3.0),
-                                   sph::MonaghanGingold1983{1.0, 2.0}, sph::ReflectingSphere<3>(sph::Vec<3>::Zero(), 1.0),
-                                   settings);
-  const auto energy = [](const sph::Particles<3>& q) { return sph::kinetic_energy(q) + sph::thermal_energy(q); };
+                                   sph::MonaghanGingold1983{1.0, 2.0},
+                                   sph::ReflectingSphere<3>(sph::Vec<3>::Zero(), 1.0), settings);
+  const auto energy = [](const sph::Particles<3>& q) {
+    return sph::kinetic_energy(q) + sph::thermal_energy(q);
+  };
   const double e0 = energy(sim.particles());
   double farthest = 0;
   sim.run_until(1.0, [&](const auto& s) {
     for (const auto& x : s.particles().position) farthest = std::max(farthest, x.norm());
   });
   const double de = std::abs(energy(sim.particles()) - e0) / e0;
-  INFO(points.size() << " particles, " << sim.steps() << " steps, energy change " << de << ", farthest " << farthest);
+  INFO(points.size() << " particles, " << sim.steps() << " steps, energy change " << de
+                     << ", farthest " << farthest);
   CHECK(farthest <= 1.0);
   CHECK(farthest > 0.9);  // the gas did reach the wall
   CHECK(de <= 1e-2);
@@ -106,18 +113,21 @@ TEST_CASE("the reflecting sphere stops with a message, not a crash", "[boundarie
   SECTION("a particle that starts outside") {
     sph::Particles<3> p;
     p.add(sph::Vec<3>(0.0, 0.0, 1.5), sph::Vec<3>::Zero(), 1.0);
-    CHECK_THROWS_WITH((sph::Simulation<FreeInSphere>(p, sph::Box<3>::open(),
-                                                     sph::ReflectingSphere<3>(sph::Vec<3>::Zero(), 1.0), fixed_step(0.1))),
+    CHECK_THROWS_WITH((sph::Simulation<FreeInSphere>(
+                          p, sph::Box<3>::open(),
+                          sph::ReflectingSphere<3>(sph::Vec<3>::Zero(), 1.0), fixed_step(0.1))),
                       Catch::Contains("particle 0") && Catch::Contains("outside"));
   }
   SECTION("a step that carries a particle more than the radius past the wall") {
     sph::Particles<3> p;
     p.add(sph::Vec<3>::Zero(), sph::Vec<3>(100.0, 0.0, 0.0), 1.0);
-    sph::Simulation<FreeInSphere> sim(p, sph::Box<3>::open(), sph::ReflectingSphere<3>(sph::Vec<3>::Zero(), 1.0),
+    sph::Simulation<FreeInSphere> sim(p, sph::Box<3>::open(),
+                                      sph::ReflectingSphere<3>(sph::Vec<3>::Zero(), 1.0),
                                       fixed_step(0.1));
     CHECK_THROWS_WITH(sim.step(), Catch::Contains("particle 0") && Catch::Contains("too long"));
   }
   SECTION("an impossible radius") {
-    CHECK_THROWS_WITH(sph::ReflectingSphere<3>(sph::Vec<3>::Zero(), -1.0), Catch::Contains("radius"));
+    CHECK_THROWS_WITH(sph::ReflectingSphere<3>(sph::Vec<3>::Zero(), -1.0),
+                      Catch::Contains("radius"));
   }
 }

@@ -47,11 +47,14 @@ double rankine_hugoniot_residual(const GasState& a, const GasState& b, double S,
     return std::abs(dF - S_ * dU) / scale;
   };
   const double scale_mass = std::abs(Fa.mass) + std::abs(S * Ua.mass) + 1e-300;
-  const double scale_momentum = std::abs(Fa.momentum) + std::abs(S * Ua.momentum) + a.pressure + 1e-300;
-  const double scale_energy = std::abs(Fa.energy) + std::abs(S * Ua.energy) + std::abs(Fb.energy) + 1e-300;
-  return std::max({residual(Fb.mass - Fa.mass, Ub.mass - Ua.mass, S, scale_mass),
-                   residual(Fb.momentum - Fa.momentum, Ub.momentum - Ua.momentum, S, scale_momentum),
-                   residual(Fb.energy - Fa.energy, Ub.energy - Ua.energy, S, scale_energy)});
+  const double scale_momentum =
+      std::abs(Fa.momentum) + std::abs(S * Ua.momentum) + a.pressure + 1e-300;
+  const double scale_energy =
+      std::abs(Fa.energy) + std::abs(S * Ua.energy) + std::abs(Fb.energy) + 1e-300;
+  return std::max(
+      {residual(Fb.mass - Fa.mass, Ub.mass - Ua.mass, S, scale_mass),
+       residual(Fb.momentum - Fa.momentum, Ub.momentum - Ua.momentum, S, scale_momentum),
+       residual(Fb.energy - Fa.energy, Ub.energy - Ua.energy, S, scale_energy)});
 }
 
 /// Toro's five tests (Table 4.1) with his exact star states (Table 4.2), gamma = 1.4.
@@ -62,16 +65,51 @@ struct ToroTest {
   WaveKind left_kind, right_kind;
 };
 const std::vector<ToroTest> toro_tests = {
-    {"Test 1 (Sod)", {1.0, 0.0, 1.0}, {0.125, 0.0, 0.1}, 0.30313, 0.92745, 0.42632, 0.26557,
-     WaveKind::rarefaction, WaveKind::shock},
-    {"Test 2 (123 problem, near vacuum)", {1.0, -2.0, 0.4}, {1.0, 2.0, 0.4}, 0.00189, 0.00000, 0.02185, 0.02185,
-     WaveKind::rarefaction, WaveKind::rarefaction},
-    {"Test 3 (strong right shock)", {1.0, 0.0, 1000.0}, {1.0, 0.0, 0.01}, 460.894, 19.5975, 0.57506, 5.99924,
-     WaveKind::rarefaction, WaveKind::shock},
-    {"Test 4 (strong left shock)", {1.0, 0.0, 0.01}, {1.0, 0.0, 100.0}, 46.0950, -6.19633, 5.99242, 0.57511,
-     WaveKind::shock, WaveKind::rarefaction},
-    {"Test 5 (two colliding shocks)", {5.99924, 19.5975, 460.894}, {5.99242, -6.19633, 46.0950}, 1691.64,
-     8.68975, 14.2823, 31.0426, WaveKind::shock, WaveKind::shock},
+    {"Test 1 (Sod)",
+     {1.0, 0.0, 1.0},
+     {0.125, 0.0, 0.1},
+     0.30313,
+     0.92745,
+     0.42632,
+     0.26557,
+     WaveKind::rarefaction,
+     WaveKind::shock},
+    {"Test 2 (123 problem, near vacuum)",
+     {1.0, -2.0, 0.4},
+     {1.0, 2.0, 0.4},
+     0.00189,
+     0.00000,
+     0.02185,
+     0.02185,
+     WaveKind::rarefaction,
+     WaveKind::rarefaction},
+    {"Test 3 (strong right shock)",
+     {1.0, 0.0, 1000.0},
+     {1.0, 0.0, 0.01},
+     460.894,
+     19.5975,
+     0.57506,
+     5.99924,
+     WaveKind::rarefaction,
+     WaveKind::shock},
+    {"Test 4 (strong left shock)",
+     {1.0, 0.0, 0.01},
+     {1.0, 0.0, 100.0},
+     46.0950,
+     -6.19633,
+     5.99242,
+     0.57511,
+     WaveKind::shock,
+     WaveKind::rarefaction},
+    {"Test 5 (two colliding shocks)",
+     {5.99924, 19.5975, 460.894},
+     {5.99242, -6.19633, 46.0950},
+     1691.64,
+     8.68975,
+     14.2823,
+     31.0426,
+     WaveKind::shock,
+     WaveKind::shock},
 };
 
 /// Midpoint-rule integral of g(x) over [a, b] with n cells.
@@ -144,7 +182,8 @@ TEST_CASE("Rankine-Hugoniot conditions hold across every shock", "[riemann]") {
   CHECK(worst < 1e-12);
 }
 
-TEST_CASE("Rarefaction fans: continuous edges, u - c = x/t, Riemann invariant, isentrope", "[riemann]") {
+TEST_CASE("Rarefaction fans: continuous edges, u - c = x/t, Riemann invariant, isentrope",
+          "[riemann]") {
   const double gamma = 1.4, t = 0.25;
   const RiemannSolution sod({1.0, 0.0, 1.0}, {0.125, 0.0, 0.1}, gamma);
   const GasState L = sod.left_state();
@@ -209,8 +248,10 @@ TEST_CASE("Property test: random states, several gamma", "[riemann]") {
   int solved = 0;
   for (double gamma : {1.1, 1.4, 5.0 / 3.0, 3.0}) {
     for (int k = 0; k < 200; ++k) {
-      const GasState left{std::pow(10.0, log_uniform(random)), speed(random), std::pow(10.0, log_uniform(random))};
-      const GasState right{std::pow(10.0, log_uniform(random)), speed(random), std::pow(10.0, log_uniform(random))};
+      const GasState left{std::pow(10.0, log_uniform(random)), speed(random),
+                          std::pow(10.0, log_uniform(random))};
+      const GasState right{std::pow(10.0, log_uniform(random)), speed(random),
+                           std::pow(10.0, log_uniform(random))};
       const double critical =
           2.0 / (gamma - 1.0) * (sph::sound_speed(left, gamma) + sph::sound_speed(right, gamma));
       if (critical <= right.velocity - left.velocity) {
@@ -224,7 +265,8 @@ TEST_CASE("Property test: random states, several gamma", "[riemann]") {
            {std::tuple{s.left_wave(), left, s.star_density_left()},
             std::tuple{s.right_wave(), right, s.star_density_right()}}) {
         if (wave.kind == WaveKind::shock) {
-          const GasState a = s.sample(wave.head_speed * t - eps, t), b = s.sample(wave.head_speed * t + eps, t);
+          const GasState a = s.sample(wave.head_speed * t - eps, t),
+                         b = s.sample(wave.head_speed * t + eps, t);
           worst = std::max(worst, rankine_hugoniot_residual(a, b, wave.head_speed, gamma));
         } else {
           const double entropy = state.pressure / std::pow(state.density, gamma);
@@ -232,8 +274,10 @@ TEST_CASE("Property test: random states, several gamma", "[riemann]") {
           worst = std::max(worst, std::abs(star_entropy / entropy - 1.0));
         }
       }
-      const GasState a = s.sample(s.contact_position(t) - eps, t), b = s.sample(s.contact_position(t) + eps, t);
-      worst = std::max(worst, std::abs(a.velocity - b.velocity) / (std::abs(a.velocity) + sph::sound_speed(a, gamma)));
+      const GasState a = s.sample(s.contact_position(t) - eps, t),
+                     b = s.sample(s.contact_position(t) + eps, t);
+      worst = std::max(worst, std::abs(a.velocity - b.velocity) /
+                                  (std::abs(a.velocity) + sph::sound_speed(a, gamma)));
       worst = std::max(worst, std::abs(a.pressure / b.pressure - 1.0));
     }
   }
@@ -300,7 +344,8 @@ TEST_CASE("Extreme cases: near vacuum, strong shocks, cold gas", "[riemann]") {
   }
 }
 
-TEST_CASE("Sampling at t = 0 gives the initial data, and describe() names the pattern", "[riemann]") {
+TEST_CASE("Sampling at t = 0 gives the initial data, and describe() names the pattern",
+          "[riemann]") {
   const RiemannSolution sod({1.0, 0.0, 1.0}, {0.125, 0.0, 0.1}, 1.4, 0.5);
   CHECK(sod.sample(0.4, 0.0).density == 1.0);
   CHECK(sod.sample(0.6, 0.0).density == 0.125);
@@ -327,12 +372,16 @@ TEST_CASE("The default solution is a uniform gas at rest", "[riemann]") {
 
 TEST_CASE("Bad input is reported with a clear message", "[riemann]") {
   const GasState good{1.0, 0.0, 1.0};
-  CHECK_THROWS_WITH(RiemannSolution({-1.0, 0.0, 1.0}, good, 1.4), Catch::Contains("negative density"));
+  CHECK_THROWS_WITH(RiemannSolution({-1.0, 0.0, 1.0}, good, 1.4),
+                    Catch::Contains("negative density"));
   CHECK_THROWS_WITH(RiemannSolution(good, {0.0, 0.0, 1.0}, 1.4),
                     Catch::Contains("right state has density 0") && Catch::Contains("vacuum"));
-  CHECK_THROWS_WITH(RiemannSolution(good, {1.0, 0.0, -0.1}, 1.4), Catch::Contains("negative pressure"));
-  CHECK_THROWS_WITH(RiemannSolution({std::nan(""), 0.0, 1.0}, good, 1.4), Catch::Contains("left state is not finite"));
-  CHECK_THROWS_WITH(RiemannSolution(good, {1.0, INFINITY, 1.0}, 1.4), Catch::Contains("not finite"));
+  CHECK_THROWS_WITH(RiemannSolution(good, {1.0, 0.0, -0.1}, 1.4),
+                    Catch::Contains("negative pressure"));
+  CHECK_THROWS_WITH(RiemannSolution({std::nan(""), 0.0, 1.0}, good, 1.4),
+                    Catch::Contains("left state is not finite"));
+  CHECK_THROWS_WITH(RiemannSolution(good, {1.0, INFINITY, 1.0}, 1.4),
+                    Catch::Contains("not finite"));
   CHECK_THROWS_WITH(RiemannSolution(good, good, 1.0), Catch::Contains("gamma"));
   CHECK_THROWS_WITH(RiemannSolution(good, good, 0.5), Catch::Contains("gamma"));
   CHECK_THROWS_WITH(RiemannSolution(good, good, std::nan("")), Catch::Contains("gamma"));
@@ -341,7 +390,8 @@ TEST_CASE("Bad input is reported with a clear message", "[riemann]") {
 TEST_CASE("A vacuum generated by the data is reported by the positivity condition", "[riemann]") {
   // 2/(gamma-1) (c_L + c_R) = 5 * 2 sqrt(1.4 * 0.4) = 7.48 < u_R - u_L = 8.
   CHECK_THROWS_WITH(RiemannSolution({1.0, -4.0, 0.4}, {1.0, 4.0, 0.4}, 1.4),
-                    Catch::Contains("vacuum generated") && Catch::Contains("pressure positivity condition") &&
+                    Catch::Contains("vacuum generated") &&
+                        Catch::Contains("pressure positivity condition") &&
                         Catch::Contains("eq 4.40"));
   // Just inside the condition a solution exists, with a tiny p*.
   const RiemannSolution s({1.0, -3.7, 0.4}, {1.0, 3.7, 0.4}, 1.4);

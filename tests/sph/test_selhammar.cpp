@@ -70,9 +70,10 @@ TEST_CASE("collective term: the exact update solves its own equation and never o
           "[selhammar]") {
   const Vec<3> x(1, 0, 0);
   // (w, a, k dt): small and large differences, a neighbourhood moving with, against and across.
-  const double cases[][3] = {{1.0, 0.9, 0.1}, {1.0, 0.9, 9.0}, {1.0, 0.999, 9.0}, {1.0, 0.0, 2.0},
-                             {1.0, -0.5, 1.0}, {1.0, -0.5, 20.0}, {2.0, 0.5, 0.3}, {0.1, 0.05, 5.0},
-                             {1.0, -1.0, 0.5}, {1.0, -0.01, 9.0}, {0.3, -2.0, 0.2}};
+  const double cases[][3] = {{1.0, 0.9, 0.1},   {1.0, 0.9, 9.0},  {1.0, 0.999, 9.0},
+                             {1.0, 0.0, 2.0},   {1.0, -0.5, 1.0}, {1.0, -0.5, 20.0},
+                             {2.0, 0.5, 0.3},   {0.1, 0.05, 5.0}, {1.0, -1.0, 0.5},
+                             {1.0, -0.01, 9.0}, {0.3, -2.0, 0.2}};
   for (auto reading : {sph::CollectiveReading::mean_velocity, sph::CollectiveReading::difference}) {
     const bool difference = reading == sph::CollectiveReading::difference;
     double worst = 0;
@@ -97,16 +98,20 @@ TEST_CASE("collective term: the exact update solves its own equation and never o
   // eta = 1, v ~ c -- the printed term throws the particle backwards at 8 times its speed; the
   // difference reading, for w = 1 and a = 0.99, leaves it far behind its neighbourhood.
   const Vec<3> v(1, 0, 0);
-  const Collective3 head_on = one_particle(9.0, Vec<3>(-1, 0, 0), sph::CollectiveReading::mean_velocity);
+  const Collective3 head_on =
+      one_particle(9.0, Vec<3>(-1, 0, 0), sph::CollectiveReading::mean_velocity);
   const Vec<3> thrown = v + head_on.explicit_acceleration(0, v);
   std::printf("one kick, head on, k dt = 9: explicit w = %.3f, exact w = %.3f\n", thrown[0],
               head_on.relaxed(0, v, 1.0)[0]);
   CHECK(thrown[0] == Approx(-8.0));
   CHECK(head_on.relaxed(0, v, 1.0)[0] == 0.0);
-  const Collective3 behind = one_particle(9.0, Vec<3>(0.99, 0, 0), sph::CollectiveReading::difference);
+  const Collective3 behind =
+      one_particle(9.0, Vec<3>(0.99, 0, 0), sph::CollectiveReading::difference);
   const Vec<3> kicked = v + behind.explicit_acceleration(0, v);
-  std::printf("one kick, difference reading, w = 1, a = 0.99, k dt = 9: explicit w = %.4f, "
-              "exact w = %.4f\n", kicked[0], behind.relaxed(0, v, 1.0)[0]);
+  std::printf(
+      "one kick, difference reading, w = 1, a = 0.99, k dt = 9: explicit w = %.4f, "
+      "exact w = %.4f\n",
+      kicked[0], behind.relaxed(0, v, 1.0)[0]);
   CHECK(kicked[0] < 0.5);  // (explicit: 1 - 9 * 0.0995 = 0.10)
   CHECK(behind.relaxed(0, v, 1.0)[0] == Approx(0.99).margin(1e-12));
 
@@ -127,8 +132,8 @@ struct CollectiveOnly : sph::Scene<3> {
 // A body-centred lattice in a periodic unit cube, at rest or with velocity field f.
 template <class F>
 sph::Particles<3> lattice_cube(int cells, double u, F velocity) {
-  const auto points = sph::lattice<3>(sph::LatticeType::body_centred, Vec<3>::Zero(), Vec<3>::Ones(),
-                                      std::array<int, 3>{cells, cells, cells});
+  const auto points = sph::lattice<3>(sph::LatticeType::body_centred, Vec<3>::Zero(),
+                                      Vec<3>::Ones(), std::array<int, 3>{cells, cells, cells});
   auto p = sph::make_particles<3>(points, 1.0 / points.size(), u);
   for (std::size_t i = 0; i < p.size(); ++i) p.velocity[i] = velocity(p.position[i], i);
   return p;
@@ -146,8 +151,8 @@ TEST_CASE("collective term: the neighbourhood of a uniform flow moves with it", 
   // lattice shows it.
   auto lattice = lattice_cube(8, 0.01, [&](const Vec<3>&, std::size_t) { return drift; });
   {
-    sph::Simulation<CollectiveOnly> sim(lattice, unit_cube,
-                                        Collective3(1.0, 64, sph::NeighbourhoodNormalisation::as_printed));
+    sph::Simulation<CollectiveOnly> sim(
+        lattice, unit_cube, Collective3(1.0, 64, sph::NeighbourhoodNormalisation::as_printed));
     double worst = 0;
     for (std::size_t i = 0; i < lattice.size(); ++i)
       worst = std::max(worst, (sim.term<Collective3>().neighbourhood_velocity[i] - drift).norm());
@@ -159,7 +164,8 @@ TEST_CASE("collective term: the neighbourhood of a uniform flow moves with it", 
   std::vector<Vec<3>> points = p.position;
   sph::disturb<3>(points, 0.3 / 8, 11, unit_cube);
   p.position = points;
-  for (auto norm : {sph::NeighbourhoodNormalisation::shepard, sph::NeighbourhoodNormalisation::as_printed}) {
+  for (auto norm :
+       {sph::NeighbourhoodNormalisation::shepard, sph::NeighbourhoodNormalisation::as_printed}) {
     Collective3 term(1.0, 64, norm);
     sph::Simulation<CollectiveOnly> sim(p, unit_cube, term);
     const auto& t = sim.term<Collective3>();
@@ -167,8 +173,9 @@ TEST_CASE("collective term: the neighbourhood of a uniform flow moves with it", 
     for (std::size_t i = 0; i < p.size(); ++i)
       worst = std::max(worst, (t.neighbourhood_velocity[i] - drift).norm() / drift.norm());
     const bool shepard = norm == sph::NeighbourhoodNormalisation::shepard;
-    std::printf("uniform flow on a disturbed lattice, %s normalisation: max |v~ - v| / |v| = %.2e\n",
-                shepard ? "Shepard" : "printed 1/(1 - w_i)", worst);
+    std::printf(
+        "uniform flow on a disturbed lattice, %s normalisation: max |v~ - v| / |v| = %.2e\n",
+        shepard ? "Shepard" : "printed 1/(1 - w_i)", worst);
     if (shepard) {
       CHECK(worst < 1e-14);
     } else {
@@ -179,12 +186,14 @@ TEST_CASE("collective term: the neighbourhood of a uniform flow moves with it", 
     double heat = 0;
     auto copy = sim;
     copy.run_until(0.05);
-    for (std::size_t i = 0; i < p.size(); ++i) heat = std::max(heat, copy.particles().internal_energy[i] - 0.01);
+    for (std::size_t i = 0; i < p.size(); ++i)
+      heat = std::max(heat, copy.particles().internal_energy[i] - 0.01);
     if (shepard) CHECK(heat < 1e-15);
   }
 }
 
-TEST_CASE("collective term: kinetic plus internal energy is conserved to round-off", "[selhammar]") {
+TEST_CASE("collective term: kinetic plus internal energy is conserved to round-off",
+          "[selhammar]") {
   std::mt19937_64 rng(7);
   std::normal_distribution<double> gauss(0.0, 0.1);
   std::vector<Vec<3>> noise(2 * 6 * 6 * 6);
@@ -195,39 +204,43 @@ TEST_CASE("collective term: kinetic plus internal energy is conserved to round-o
   // (The explicit kick with eta = 1 overshoots so far that it cools particles below zero
   // energy -- the stiffness of eq 16, tested below; at eta = 0.02 it is stable.)
   for (auto reading : {sph::CollectiveReading::mean_velocity, sph::CollectiveReading::difference})
-  for (auto update : {sph::CollectiveUpdate::exact_relaxation, sph::CollectiveUpdate::explicit_as_printed}) {
-    const double eta = update == sph::CollectiveUpdate::exact_relaxation ? 1.0 : 0.02;
-    Collective3 term(eta, 64, sph::NeighbourhoodNormalisation::shepard, update);
-    term.reading = reading;
-    sph::Simulation<CollectiveOnly> sim(p, unit_cube, term);
-    const auto energy = [&] {
-      double e = 0;
-      const auto& q = sim.particles();
-      for (std::size_t i = 0; i < q.size(); ++i)
-        e += q.mass[i] * (0.5 * q.velocity[i].squaredNorm() + q.internal_energy[i]);
-      return e;
-    };
-    const auto kinetic = [&] {
-      double e = 0;
-      const auto& q = sim.particles();
-      for (std::size_t i = 0; i < q.size(); ++i) e += q.mass[i] * 0.5 * q.velocity[i].squaredNorm();
-      return e;
-    };
-    const double e0 = energy(), t0 = kinetic();
-    double worst_step = 0;
-    for (int s = 0; s < 20; ++s) {
-      const double before = energy();
-      sim.step();
-      worst_step = std::max(worst_step, std::abs(energy() - before) / e0);
+    for (auto update :
+         {sph::CollectiveUpdate::exact_relaxation, sph::CollectiveUpdate::explicit_as_printed}) {
+      const double eta = update == sph::CollectiveUpdate::exact_relaxation ? 1.0 : 0.02;
+      Collective3 term(eta, 64, sph::NeighbourhoodNormalisation::shepard, update);
+      term.reading = reading;
+      sph::Simulation<CollectiveOnly> sim(p, unit_cube, term);
+      const auto energy = [&] {
+        double e = 0;
+        const auto& q = sim.particles();
+        for (std::size_t i = 0; i < q.size(); ++i)
+          e += q.mass[i] * (0.5 * q.velocity[i].squaredNorm() + q.internal_energy[i]);
+        return e;
+      };
+      const auto kinetic = [&] {
+        double e = 0;
+        const auto& q = sim.particles();
+        for (std::size_t i = 0; i < q.size(); ++i)
+          e += q.mass[i] * 0.5 * q.velocity[i].squaredNorm();
+        return e;
+      };
+      const double e0 = energy(), t0 = kinetic();
+      double worst_step = 0;
+      for (int s = 0; s < 20; ++s) {
+        const double before = energy();
+        sim.step();
+        worst_step = std::max(worst_step, std::abs(energy() - before) / e0);
+      }
+      const bool exact = update == sph::CollectiveUpdate::exact_relaxation;
+      const bool difference = reading == sph::CollectiveReading::difference;
+      std::printf(
+          "collective only, %s reading, %s, eta = %g: %ld steps, kinetic energy %.4f -> %.4f, "
+          "worst |dE|/E per step %.1e\n",
+          difference ? "difference" : "mean-velocity", exact ? "exact update" : "explicit kick",
+          eta, sim.steps(), t0, kinetic(), worst_step);
+      CHECK(worst_step < 1e-14);
+      CHECK(kinetic() < (difference ? 0.9 : 0.999) * t0);  // it does damp
     }
-    const bool exact = update == sph::CollectiveUpdate::exact_relaxation;
-    const bool difference = reading == sph::CollectiveReading::difference;
-    std::printf("collective only, %s reading, %s, eta = %g: %ld steps, kinetic energy %.4f -> %.4f, "
-                "worst |dE|/E per step %.1e\n", difference ? "difference" : "mean-velocity",
-                exact ? "exact update" : "explicit kick", eta, sim.steps(), t0, kinetic(), worst_step);
-    CHECK(worst_step < 1e-14);
-    CHECK(kinetic() < (difference ? 0.9 : 0.999) * t0);  // it does damp
-  }
 }
 
 TEST_CASE("collective term: the explicit kick at eta = 1 stops with a clear error", "[selhammar]") {
@@ -239,7 +252,8 @@ TEST_CASE("collective term: the explicit kick at eta = 1 stops with a clear erro
   Collective3 term(1.0, 64, sph::NeighbourhoodNormalisation::shepard,
                    sph::CollectiveUpdate::explicit_as_printed);
   sph::Simulation<CollectiveOnly> sim(p, unit_cube, term);
-  CHECK_THROWS_WITH(sim.run_until(10.0), Catch::Contains("internal energy") && Catch::Contains("exact update"));
+  CHECK_THROWS_WITH(sim.run_until(10.0),
+                    Catch::Contains("internal energy") && Catch::Contains("exact update"));
   // the exact update runs through, and conserves energy
   sph::Simulation<CollectiveOnly> exact(p, unit_cube, Collective3(1.0, 64));
   CHECK_NOTHROW(exact.run_until(1.0));
@@ -279,18 +293,22 @@ TEST_CASE("restricted vNR: off in a homologous compression, on in a collision", 
   // v = -2 (x - centre) on a lattice in an open box: every neighbour pair approaches at
   // 2 r (supersonic for r > c/2), exactly what the compression explains.
   const Vec<3> centre(0.5, 0.5, 0.5);
-  auto p = lattice_cube(12, 1e-4, [&](const Vec<3>& x, std::size_t) -> Vec<3> { return -2.0 * (x - centre); });
+  auto p = lattice_cube(
+      12, 1e-4, [&](const Vec<3>& x, std::size_t) -> Vec<3> { return -2.0 * (x - centre); });
   sph::Settings settings;
   settings.smoothing = sph::SmoothingLengthRule::neighbour_number(64);
   const double margin = 0.25;  // away from the lattice's free surface
   double ours = 0, printed = 0;
-  for (auto test : {sph::CompressionTest::excess_beyond_compression, sph::CompressionTest::as_printed}) {
+  for (auto test :
+       {sph::CompressionTest::excess_beyond_compression, sph::CompressionTest::as_printed}) {
     sph::Simulation<RestrictedScene> sim(p, sph::Box<3>::open(), settings,
                                          sph::RestrictedVonNeumannRichtmyer{2.0, 1e-4, test});
     (test == sph::CompressionTest::as_printed ? printed : ours) = fraction_on(sim, margin);
   }
-  std::printf("homologous compression: restricted vNR on for %.3f of supersonic approaching pairs "
-              "(our reading), %.3f (as printed)\n", ours, printed);
+  std::printf(
+      "homologous compression: restricted vNR on for %.3f of supersonic approaching pairs "
+      "(our reading), %.3f (as printed)\n",
+      ours, printed);
   CHECK(ours == 0.0);
   CHECK(printed > 0.99);
 
@@ -302,7 +320,8 @@ TEST_CASE("restricted vNR: off in a homologous compression, on in a collision", 
   sph::Simulation<RestrictedScene> collision(q, unit_cube, settings,
                                              sph::RestrictedVonNeumannRichtmyer{2.0, 1e-4});
   const double across = fraction_on(collision, -1.0);
-  std::printf("colliding streams: restricted vNR on for %.3f of supersonic approaching pairs\n", across);
+  std::printf("colliding streams: restricted vNR on for %.3f of supersonic approaching pairs\n",
+              across);
   CHECK(across > 0.75);
 }
 
@@ -312,7 +331,8 @@ struct SwitchScene : sph::Scene<3> {
 };
 }  // namespace
 
-TEST_CASE("Morris-Monaghan switch: alpha rises under compression and decays at rest", "[selhammar]") {
+TEST_CASE("Morris-Monaghan switch: alpha rises under compression and decays at rest",
+          "[selhammar]") {
   // A converging flow in a periodic cube (v_x = -0.3 sin 2 pi x): alpha grows where div v < 0.
   auto p = lattice_cube(8, 0.01, [](const Vec<3>& x, std::size_t) {
     return Vec<3>(-0.3 * std::sin(2 * M_PI * x[0]), 0.0, 0.0);
@@ -337,6 +357,7 @@ TEST_CASE("Morris-Monaghan switch: alpha rises under compression and decays at r
   still.run_until(tau);
   const double expected = 0.1 + 0.9 * std::exp(-1.0);
   const double got = still.term<sph::MorrisMonaghan1997>().alpha[0];
-  std::printf("switch at rest after one tau = %.3f: alpha = %.5f (expected %.5f)\n", tau, got, expected);
+  std::printf("switch at rest after one tau = %.3f: alpha = %.5f (expected %.5f)\n", tau, got,
+              expected);
   CHECK(got == Approx(expected).epsilon(1e-3));
 }

@@ -30,15 +30,19 @@ sph::Particles<3> stirred_box(int per_axis, unsigned seed) {
   for (int i = 0; i < per_axis; ++i)
     for (int j = 0; j < per_axis; ++j)
       for (int k = 0; k < per_axis; ++k) {
-        sph::Vec<3> x((i + 0.5 + jitter(rng)) * dx, (j + 0.5 + jitter(rng)) * dx, (k + 0.5 + jitter(rng)) * dx);
+        sph::Vec<3> x((i + 0.5 + jitter(rng)) * dx, (j + 0.5 + jitter(rng)) * dx,
+                      (k + 0.5 + jitter(rng)) * dx);
         sph::Vec<3> v(speed(rng), speed(rng), speed(rng));
-        const double u = 1.0 + 5.0 * std::exp(-20.0 * (x - sph::Vec<3>::Constant(0.5)).squaredNorm());
+        const double u =
+            1.0 + 5.0 * std::exp(-20.0 * (x - sph::Vec<3>::Constant(0.5)).squaredNorm());
         p.add(x, v, dx * dx * dx * (1.0 + 0.1 * jitter(rng)), u);
       }
   return p;
 }
 
-sph::Box<3> unit_box() { return sph::Box<3>::periodic_box(sph::Vec<3>::Zero(), sph::Vec<3>::Ones()); }
+sph::Box<3> unit_box() {
+  return sph::Box<3>::periodic_box(sph::Vec<3>::Zero(), sph::Vec<3>::Ones());
+}
 
 sph::Vec<3> momentum(const sph::Particles<3>& p) {
   sph::Vec<3> total = sph::Vec<3>::Zero();
@@ -48,7 +52,8 @@ sph::Vec<3> momentum(const sph::Particles<3>& p) {
 
 double energy(const sph::Particles<3>& p) {
   double e = 0;
-  for (std::size_t i = 0; i < p.size(); ++i) e += p.mass[i] * (0.5 * p.velocity[i].squaredNorm() + p.internal_energy[i]);
+  for (std::size_t i = 0; i < p.size(); ++i)
+    e += p.mass[i] * (0.5 * p.velocity[i].squaredNorm() + p.internal_energy[i]);
   return e;
 }
 
@@ -61,18 +66,21 @@ struct MisspelledTerm {
   }
 };
 static_assert(!sph::RecognisedTerm<MisspelledTerm, 3>);
-static_assert(sph::RecognisedTerm<sph::MonaghanGingold1983, 3> && sph::RecognisedTerm<sph::PressureHernquistKatz, 1>);
+static_assert(sph::RecognisedTerm<sph::MonaghanGingold1983, 3> &&
+              sph::RecognisedTerm<sph::PressureHernquistKatz, 1>);
 
 }  // namespace
 
 TEST_CASE("momentum is conserved to round-off, energy to the integrator's error", "[simulation]") {
   sph::Settings settings;
   settings.smoothing = sph::SmoothingLengthRule::neighbour_number(50, 2);
-  sph::Simulation<Hydro3> sim(stirred_box(10, 7), unit_box(), sph::IdealGas(5.0 / 3.0), standard_av, settings);
+  sph::Simulation<Hydro3> sim(stirred_box(10, 7), unit_box(), sph::IdealGas(5.0 / 3.0), standard_av,
+                              settings);
   const sph::Vec<3> p0 = momentum(sim.particles());
   const double e0 = energy(sim.particles());
   double scale = 0;  // sum of |m v|: the scale against which round-off is judged
-  for (std::size_t i = 0; i < sim.particles().size(); ++i) scale += sim.particles().mass[i] * sim.particles().velocity[i].norm();
+  for (std::size_t i = 0; i < sim.particles().size(); ++i)
+    scale += sim.particles().mass[i] * sim.particles().velocity[i].norm();
   // The total force on the set is a sum of exactly antisymmetric pair terms: it vanishes up to
   // the round-off of summing ~N * N_ngb terms in a different order on each side.
   sph::Vec<3> force = sph::Vec<3>::Zero();
@@ -102,7 +110,8 @@ TEST_CASE("results are bitwise identical with 1 and 2 threads", "[simulation]") 
     sph::Settings settings;
     settings.smoothing = sph::SmoothingLengthRule::from_density(50);
     // 17^3 = 4913 particles: above sph::parallel_threshold, so two threads really share the work.
-    sph::Simulation<Hydro3> sim(stirred_box(17, 3), unit_box(), sph::IdealGas(1.4), standard_av, settings);
+    sph::Simulation<Hydro3> sim(stirred_box(17, 3), unit_box(), sph::IdealGas(1.4), standard_av,
+                                settings);
     for (int k = 0; k < 3; ++k) sim.step();
     omp_set_num_threads(saved);
     return sim.particles();
@@ -111,8 +120,9 @@ TEST_CASE("results are bitwise identical with 1 and 2 threads", "[simulation]") 
   REQUIRE(one.size() >= sph::parallel_threshold);
   bool identical = true;
   for (std::size_t i = 0; i < one.size(); ++i) {
-    identical = identical && one.position[i] == two.position[i] && one.velocity[i] == two.velocity[i] &&
-                one.internal_energy[i] == two.internal_energy[i] && one.density[i] == two.density[i];
+    identical =
+        identical && one.position[i] == two.position[i] && one.velocity[i] == two.velocity[i] &&
+        one.internal_energy[i] == two.internal_energy[i] && one.density[i] == two.density[i];
   }
   CHECK(identical);
 }
@@ -124,29 +134,36 @@ TEST_CASE("bad input stops with a message naming the problem", "[simulation]") {
   sph::Box<1> open;
   open.periodic = {false};
   SECTION("gamma <= 1") { CHECK_THROWS_WITH(sph::IdealGas(1.0), Catch::Contains("gamma")); }
-  SECTION("negative alpha") { CHECK_THROWS_WITH(sph::MonaghanGingold1983(-1, 2), Catch::Contains("alpha")); }
+  SECTION("negative alpha") {
+    CHECK_THROWS_WITH(sph::MonaghanGingold1983(-1, 2), Catch::Contains("alpha"));
+  }
   SECTION("negative mass") {
     p.mass[7] = -1;
-    CHECK_THROWS_WITH(sph::Simulation<Hydro1>(p, open, sph::IdealGas(1.4)), Catch::Contains("particle 7"));
+    CHECK_THROWS_WITH(sph::Simulation<Hydro1>(p, open, sph::IdealGas(1.4)),
+                      Catch::Contains("particle 7"));
   }
   SECTION("NaN velocity") {
     p.velocity[3][0] = std::nan("");
-    CHECK_THROWS_WITH(sph::Simulation<Hydro1>(p, open, sph::IdealGas(1.4)), Catch::Contains("particle 3"));
+    CHECK_THROWS_WITH(sph::Simulation<Hydro1>(p, open, sph::IdealGas(1.4)),
+                      Catch::Contains("particle 3"));
   }
   SECTION("negative internal energy") {
     p.internal_energy[5] = -0.5;
-    CHECK_THROWS_WITH(sph::Simulation<Hydro1>(p, open, sph::IdealGas(1.4)), Catch::Contains("internal energy"));
+    CHECK_THROWS_WITH(sph::Simulation<Hydro1>(p, open, sph::IdealGas(1.4)),
+                      Catch::Contains("internal energy"));
   }
   SECTION("an isolated particle with fixed h") {
     p.add(sph::Vec<1>(50.0), sph::Vec<1>(0.0), 0.1, 1.0);
     for (auto& h : p.smoothing_length) h = 0.12;
     sph::Settings s;
     s.smoothing = sph::SmoothingLengthRule::fixed();
-    CHECK_THROWS_WITH(sph::Simulation<Hydro1>(p, open, sph::IdealGas(1.4), s), Catch::Contains("particle 20") && Catch::Contains("no neighbours"));
+    CHECK_THROWS_WITH(sph::Simulation<Hydro1>(p, open, sph::IdealGas(1.4), s),
+                      Catch::Contains("particle 20") && Catch::Contains("no neighbours"));
   }
   SECTION("more neighbours wanted than particles exist") {
     sph::Settings s;
     s.smoothing = sph::SmoothingLengthRule::neighbour_number(30);
-    CHECK_THROWS_WITH(sph::Simulation<Hydro1>(p, open, sph::IdealGas(1.4), s), Catch::Contains("cannot reach"));
+    CHECK_THROWS_WITH(sph::Simulation<Hydro1>(p, open, sph::IdealGas(1.4), s),
+                      Catch::Contains("cannot reach"));
   }
 }

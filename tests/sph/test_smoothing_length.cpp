@@ -1,5 +1,5 @@
-// The smoothing-length rules of lib/sph/smoothing_length.hpp on a uniform lattice, a random set and a
-// set with a 10^6 density contrast:
+// The smoothing-length rules of lib/sph/smoothing_length.hpp on a uniform lattice, a random set
+// and a set with a 10^6 density contrast:
 //  - neighbour number: every particle's count lies within N +- tolerance (on a lattice: the
 //    achievable count nearest N, since whole shells of neighbours sit at one distance);
 //  - density: every particle satisfies Watkins' eq A6/A7, rho_i (2 h_i)^D V_D = N m_i, checked
@@ -29,7 +29,8 @@ std::vector<int> brute_force_counts(const sph::Particles<D>& p, const sph::Box<D
     const double reach = 2.0 * p.smoothing_length[i];
     for (int a = 0; a < D; ++a) REQUIRE((!box.periodic[a] || reach < 0.5 * box.length(a)));
     for (std::size_t j = 0; j < p.size(); ++j) {
-      if (j != i && box.separation(p.position[i], p.position[j]).squaredNorm() < reach * reach) ++counts[i];
+      if (j != i && box.separation(p.position[i], p.position[j]).squaredNorm() < reach * reach)
+        ++counts[i];
     }
   }
   return counts;
@@ -40,7 +41,8 @@ std::vector<int> brute_force_counts(const sph::Particles<D>& p, const sph::Box<D
 template <int D>
 double brute_force_density(const sph::Particles<D>& p, std::size_t i, double h) {
   double rho = 0;
-  for (std::size_t j = 0; j < p.size(); ++j) rho += p.mass[j] * sph::Kernel<D>::value((p.position[i] - p.position[j]).norm(), h);
+  for (std::size_t j = 0; j < p.size(); ++j)
+    rho += p.mass[j] * sph::Kernel<D>::value((p.position[i] - p.position[j]).norm(), h);
   return rho;
 }
 
@@ -60,7 +62,8 @@ void check_counts(sph::Particles<D>& p, const sph::Box<D>& box, double n, double
 
 // The cumulative neighbour counts of a lattice around one of its points: the achievable counts.
 template <int D>
-std::vector<int> shell_counts(const std::vector<Vec<D>>& x, const sph::Box<D>& box, std::size_t centre) {
+std::vector<int> shell_counts(const std::vector<Vec<D>>& x, const sph::Box<D>& box,
+                              std::size_t centre) {
   std::map<long, int> shells;  // distance^2 in units of 1e-9, rounded
   for (std::size_t j = 0; j < x.size(); ++j) {
     if (j == centre) continue;
@@ -75,36 +78,45 @@ std::vector<int> shell_counts(const std::vector<Vec<D>>& x, const sph::Box<D>& b
 
 // Apply the density rule and check eq A6/A7 at every particle; returns the mean count.
 template <int D>
-double check_density_rule(sph::Particles<D>& p, const sph::Box<D>& box, double n, const char* what) {
+double check_density_rule(sph::Particles<D>& p, const sph::Box<D>& box, double n,
+                          const char* what) {
   sph::NeighbourSearch<D> search;
   search.update(p, box, sph::SmoothingLengthRule::from_density(n));
   double worst = 0, mean_count = 0;
   for (std::size_t i = 0; i < p.size(); ++i) {
     const double h = p.smoothing_length[i];
-    const double kernel_mass = brute_force_density<D>(p, i, h) * sph::unit_ball_volume<D>() * sph::power<D>(2.0 * h);
+    const double kernel_mass =
+        brute_force_density<D>(p, i, h) * sph::unit_ball_volume<D>() * sph::power<D>(2.0 * h);
     worst = std::max(worst, std::abs(kernel_mass / (n * p.mass[i]) - 1.0));
     mean_count += p.neighbour_count[i] / static_cast<double>(p.size());
   }
-  INFO(what << ": worst relative error of the kernel mass " << worst << ", mean count " << mean_count);
+  INFO(what << ": worst relative error of the kernel mass " << worst << ", mean count "
+            << mean_count);
   CHECK(worst < 1e-6);
   return mean_count;
 }
 
 }  // namespace
 
-TEST_CASE("neighbour-number rule on a random set: every count within tolerance", "[smoothing_length]") {
+TEST_CASE("neighbour-number rule on a random set: every count within tolerance",
+          "[smoothing_length]") {
   auto p1 = sph::make_particles<1>(sph::uniform_random<1>(Vec<1>(0.0), Vec<1>(1.0), 400, 1), 1.0);
   check_counts<1>(p1, sph::Box<1>::periodic_box(Vec<1>(0.0), Vec<1>(1.0)), 6, 0);
-  auto p2 = sph::make_particles<2>(sph::uniform_random<2>(Vec<2>::Zero(), Vec<2>::Ones(), 800, 2), 1.0);
+  auto p2 =
+      sph::make_particles<2>(sph::uniform_random<2>(Vec<2>::Zero(), Vec<2>::Ones(), 800, 2), 1.0);
   check_counts<2>(p2, sph::Box<2>::periodic_box(Vec<2>::Zero(), Vec<2>::Ones()), 30, 3);
-  auto p3 = sph::make_particles<3>(sph::uniform_random<3>(Vec<3>::Zero(), Vec<3>::Ones(), 1500, 3), 1.0);
+  auto p3 =
+      sph::make_particles<3>(sph::uniform_random<3>(Vec<3>::Zero(), Vec<3>::Ones(), 1500, 3), 1.0);
   check_counts<3>(p3, sph::Box<3>::periodic_box(Vec<3>::Zero(), Vec<3>::Ones()), 64, 0);
-  check_counts<3>(p3, sph::Box<3>::periodic_box(Vec<3>::Zero(), Vec<3>::Ones()), 50, 5);  // Watkins: +-10 %
-  auto open = sph::make_particles<3>(sph::uniform_random<3>(Vec<3>::Zero(), Vec<3>::Ones(), 1500, 4), 1.0);
+  check_counts<3>(p3, sph::Box<3>::periodic_box(Vec<3>::Zero(), Vec<3>::Ones()), 50,
+                  5);  // Watkins: +-10 %
+  auto open =
+      sph::make_particles<3>(sph::uniform_random<3>(Vec<3>::Zero(), Vec<3>::Ones(), 1500, 4), 1.0);
   check_counts<3>(open, sph::Box<3>::open(), 64, 6);
 }
 
-TEST_CASE("neighbour-number rule on a lattice: the achievable count nearest the target", "[smoothing_length]") {
+TEST_CASE("neighbour-number rule on a lattice: the achievable count nearest the target",
+          "[smoothing_length]") {
   // On a cubic lattice the neighbours come in shells (3D: 6, 12, 8, 6, 24, 24, ...), so most
   // targets cannot be met exactly: N = 64 lies between 56 and 80.  The rule must then choose the
   // shell boundary nearest N -- and never split a shell by round-off.
@@ -127,16 +139,19 @@ TEST_CASE("neighbour-number rule on a lattice: the achievable count nearest the 
   }
   // 2D hexagonal: shells of 6, 6, 6, 12, ... ; N = 18 is reachable exactly.
   const Vec<2> hi2(1, std::sqrt(3.0) / 2);
-  auto p = sph::make_particles<2>(sph::lattice<2>(LatticeType::hexagonal, Vec<2>::Zero(), hi2, 0.05), 1.0);
+  auto p = sph::make_particles<2>(
+      sph::lattice<2>(LatticeType::hexagonal, Vec<2>::Zero(), hi2, 0.05), 1.0);
   check_counts<2>(p, sph::Box<2>::periodic_box(Vec<2>::Zero(), hi2), 18, 0);
 }
 
-TEST_CASE("neighbour-number rule on a lattice: a forced shell count is kept until it changes", "[smoothing_length]") {
+TEST_CASE("neighbour-number rule on a lattice: a forced shell count is kept until it changes",
+          "[smoothing_length]") {
   // N = 64 +- 3 on a cubic lattice: the nearest achievable count is 56.  A second update of the
   // unmoved lattice must accept 56 (the count the rule forced) and leave every h untouched; a
   // compressed lattice changes the counts, and the rule must select again.
   const auto box = sph::Box<3>::periodic_box(Vec<3>::Zero(), Vec<3>::Ones());
-  auto p = sph::make_particles<3>(sph::lattice<3>(LatticeType::cubic, Vec<3>::Zero(), Vec<3>::Ones(), 0.1), 1.0);
+  auto p = sph::make_particles<3>(
+      sph::lattice<3>(LatticeType::cubic, Vec<3>::Zero(), Vec<3>::Ones(), 0.1), 1.0);
   const auto rule = sph::SmoothingLengthRule::neighbour_number(64, 3);
   sph::NeighbourSearch<3> search;
   search.update(p, box, rule);
@@ -171,7 +186,8 @@ TEST_CASE("neighbour-number rule with a 10^6 density contrast", "[smoothing_leng
   // 3D, open: 2000 particles in the unit cube and 2000 in a cube of side 0.01 at its centre.
   // Number densities 2000 and 2e9: a contrast of 10^6, and h differs by a factor 100.
   auto x = sph::uniform_random<3>(Vec<3>::Zero(), Vec<3>::Ones(), 2000, 5);
-  const auto cluster = sph::uniform_random<3>(Vec<3>::Constant(0.495), Vec<3>::Constant(0.505), 2000, 6);
+  const auto cluster =
+      sph::uniform_random<3>(Vec<3>::Constant(0.495), Vec<3>::Constant(0.505), 2000, 6);
   x.insert(x.end(), cluster.begin(), cluster.end());
   auto p = sph::make_particles<3>(x, 1.0);
   check_counts<3>(p, sph::Box<3>::open(), 50, 5);
@@ -183,17 +199,20 @@ TEST_CASE("neighbour-number rule with a 10^6 density contrast", "[smoothing_leng
 TEST_CASE("density rule: every particle satisfies Watkins eq A6/A7", "[smoothing_length]") {
   // rho_i(h_i) (2 h_i)^D V_D = N m_i with the gather density including the self term.
   SECTION("a lattice (open box)") {
-    auto p = sph::make_particles<2>(sph::lattice<2>(LatticeType::cubic, Vec<2>::Zero(), Vec<2>::Ones(), 0.05), 0.0025);
+    auto p = sph::make_particles<2>(
+        sph::lattice<2>(LatticeType::cubic, Vec<2>::Zero(), Vec<2>::Ones(), 0.05), 0.0025);
     check_density_rule<2>(p, sph::Box<2>::open(), 30, "2D lattice");
   }
   SECTION("a random set") {
-    auto p = sph::make_particles<3>(sph::uniform_random<3>(Vec<3>::Zero(), Vec<3>::Ones(), 2000, 8), 1.0 / 2000);
+    auto p = sph::make_particles<3>(sph::uniform_random<3>(Vec<3>::Zero(), Vec<3>::Ones(), 2000, 8),
+                                    1.0 / 2000);
     const double mean_count = check_density_rule<3>(p, sph::Box<3>::open(), 60, "3D random");
     CHECK(mean_count > 40);  // the surface particles see a half-empty kernel and grow their h
   }
   SECTION("a 10^6 density contrast with equal masses") {
     auto x = sph::uniform_random<3>(Vec<3>::Zero(), Vec<3>::Ones(), 1000, 9);
-    const auto cluster = sph::uniform_random<3>(Vec<3>::Constant(0.495), Vec<3>::Constant(0.505), 1000, 10);
+    const auto cluster =
+        sph::uniform_random<3>(Vec<3>::Constant(0.495), Vec<3>::Constant(0.505), 1000, 10);
     x.insert(x.end(), cluster.begin(), cluster.end());
     auto p = sph::make_particles<3>(x, 1.0 / 2000);
     check_density_rule<3>(p, sph::Box<3>::open(), 50, "3D contrast");
@@ -203,18 +222,22 @@ TEST_CASE("density rule: every particle satisfies Watkins eq A6/A7", "[smoothing
 
 TEST_CASE("smoothing-length failures name the particle", "[smoothing_length][degenerate]") {
   SECTION("the density rule does not converge") {
-    auto p = sph::make_particles<2>(sph::uniform_random<2>(Vec<2>::Zero(), Vec<2>::Ones(), 300, 1), 1.0 / 300);
+    auto p = sph::make_particles<2>(sph::uniform_random<2>(Vec<2>::Zero(), Vec<2>::Ones(), 300, 1),
+                                    1.0 / 300);
     auto rule = sph::SmoothingLengthRule::from_density(20);
     rule.max_iterations = 1;
     sph::NeighbourSearch<2> search;
-    CHECK_THROWS_WITH(search.update(p, sph::Box<2>::periodic_box(Vec<2>::Zero(), Vec<2>::Ones()), rule),
-                      Catch::Contains("particle") && Catch::Contains("did not converge"));
+    CHECK_THROWS_WITH(
+        search.update(p, sph::Box<2>::periodic_box(Vec<2>::Zero(), Vec<2>::Ones()), rule),
+        Catch::Contains("particle") && Catch::Contains("did not converge"));
   }
   SECTION("too few particles for the neighbour number") {
-    auto p = sph::make_particles<3>(sph::uniform_random<3>(Vec<3>::Zero(), Vec<3>::Ones(), 30, 1), 1.0);
+    auto p =
+        sph::make_particles<3>(sph::uniform_random<3>(Vec<3>::Zero(), Vec<3>::Ones(), 30, 1), 1.0);
     sph::NeighbourSearch<3> search;
-    CHECK_THROWS_WITH(search.update(p, sph::Box<3>::open(), sph::SmoothingLengthRule::neighbour_number(50)),
-                      Catch::Contains("particle") && Catch::Contains("cannot reach"));
+    CHECK_THROWS_WITH(
+        search.update(p, sph::Box<3>::open(), sph::SmoothingLengthRule::neighbour_number(50)),
+        Catch::Contains("particle") && Catch::Contains("cannot reach"));
   }
   SECTION("more than N coincident particles still get h > 0") {
     // 30 particles on one spot, target 20: the 20th and 21st neighbours are both at r = 0.  The
@@ -223,7 +246,8 @@ TEST_CASE("smoothing-length failures name the particle", "[smoothing_length][deg
     for (int k = 0; k < 30; ++k) x[k] = Vec<2>(0.5, 0.5);
     auto p = sph::make_particles<2>(x, 1.0 / 300);
     sph::NeighbourSearch<2> search;
-    search.update(p, sph::Box<2>::periodic_box(Vec<2>::Zero(), Vec<2>::Ones()), sph::SmoothingLengthRule::neighbour_number(20));
+    search.update(p, sph::Box<2>::periodic_box(Vec<2>::Zero(), Vec<2>::Ones()),
+                  sph::SmoothingLengthRule::neighbour_number(20));
     CHECK(p.smoothing_length[0] > 0);
     CHECK(p.neighbour_count[0] >= 29);
     sph::compute_density(p, search.list());
@@ -249,13 +273,17 @@ TEST_CASE("smoothing-length failures name the particle", "[smoothing_length][deg
     sph::Particles<2> p;
     for (int i = 0; i < 10; ++i) p.add(Vec<2>(0.25, 0.5), Vec<2>::Zero(), 1.0);
     sph::NeighbourSearch<2> search;
-    CHECK_THROWS_WITH(search.update(p, sph::Box<2>::open(), sph::SmoothingLengthRule::neighbour_number(5)),
-                      Catch::Contains("all 10 particles are at one point"));
+    CHECK_THROWS_WITH(
+        search.update(p, sph::Box<2>::open(), sph::SmoothingLengthRule::neighbour_number(5)),
+        Catch::Contains("all 10 particles are at one point"));
   }
   SECTION("a non-finite position") {
-    auto p = sph::make_particles<2>(sph::uniform_random<2>(Vec<2>::Zero(), Vec<2>::Ones(), 100, 2), 0.01);
+    auto p = sph::make_particles<2>(sph::uniform_random<2>(Vec<2>::Zero(), Vec<2>::Ones(), 100, 2),
+                                    0.01);
     p.position[12] = Vec<2>(std::nan(""), 0.5);
     sph::NeighbourSearch<2> search;
-    CHECK_THROWS_AS(search.update(p, sph::Box<2>::open(), sph::SmoothingLengthRule::neighbour_number(10)), sph::Error);
+    CHECK_THROWS_AS(
+        search.update(p, sph::Box<2>::open(), sph::SmoothingLengthRule::neighbour_number(10)),
+        sph::Error);
   }
 }

@@ -82,7 +82,9 @@ SplashView splash_view(const std::vector<std::string>& lines) {
   SplashView view;
   // Header lines: everything before the first two consecutive lines with equal non-zero counts.
   std::size_t k = 1;
-  while (k < lines.size() && !(numeric_columns(lines[k]) > 0 && numeric_columns(lines[k]) == numeric_columns(lines[k - 1]))) ++k;
+  while (k < lines.size() && !(numeric_columns(lines[k]) > 0 &&
+                               numeric_columns(lines[k]) == numeric_columns(lines[k - 1])))
+    ++k;
   view.header_lines = k - 1;
   view.columns = numeric_columns(lines[k]);
   // Time: the first header number with a decimal point; gamma: the next one in (1, 2].
@@ -121,7 +123,8 @@ TEST_CASE("snapshot: the header is exactly SPLASH's layout", "[snapshot]") {
         std::vector<std::string>{"x", "vx", "mass", "h", "density", "u", "pressure"});
 }
 
-TEST_CASE("snapshot: SPLASH finds the header, time, gamma and the columns without options", "[snapshot]") {
+TEST_CASE("snapshot: SPLASH finds the header, time, gamma and the columns without options",
+          "[snapshot]") {
   SECTION("1D") {
     const std::string path = output_path("snapshot_splash_1d.dat");
     sph::write_snapshot(path, random_particles<1>(20, 1), 1.0, 5.0 / 3.0);  // t = 1 still has a '.'
@@ -144,7 +147,8 @@ TEST_CASE("snapshot: SPLASH finds the header, time, gamma and the columns withou
     CHECK(view.time == 0.0);
     CHECK(view.gamma == 1.4);
     CHECK(sph::splash_ascii::parse_column_labels(lines[5]) ==
-          std::vector<std::string>{"x", "y", "z", "vx", "vy", "vz", "mass", "h", "density", "u", "pressure"});
+          std::vector<std::string>{"x", "y", "z", "vx", "vy", "vz", "mass", "h", "density", "u",
+                                   "pressure"});
   }
 }
 
@@ -187,8 +191,9 @@ TEST_CASE("snapshot: errors name the path", "[snapshot]") {
                       Catch::Contains("cannot write /nonexistent-directory/snap.dat"));
   }
   SECTION("a missing file") {
-    CHECK_THROWS_WITH(sph::read_snapshot<1>(output_path("no-such-snapshot.dat")),
-                      Catch::Contains("cannot read snapshot") && Catch::Contains("no-such-snapshot.dat"));
+    CHECK_THROWS_WITH(
+        sph::read_snapshot<1>(output_path("no-such-snapshot.dat")),
+        Catch::Contains("cannot read snapshot") && Catch::Contains("no-such-snapshot.dat"));
   }
   SECTION("the wrong dimension") {
     const std::string path = output_path("snapshot_3d_read_as_1d.dat");
@@ -205,7 +210,8 @@ TEST_CASE("snapshot: errors name the path", "[snapshot]") {
       for (const auto& l : lines) text += l + "\n";
       return text;
     }();
-    CHECK_THROWS_WITH(sph::read_snapshot<1>(path), Catch::Contains("line 9") && Catch::Contains("'three'"));
+    CHECK_THROWS_WITH(sph::read_snapshot<1>(path),
+                      Catch::Contains("line 9") && Catch::Contains("'three'"));
   }
   SECTION("a field of the wrong size") {
     auto q = p;

@@ -33,8 +33,12 @@ constexpr double pi = std::numbers::pi;
 
 // The larger (smaller) of a running extreme and a new value, a NaN winning: std::max and
 // std::min would drop a NaN in their second argument, and a NaN must fail the check it reaches.
-double worse(double running, double value) { return std::isnan(value) || value > running ? value : running; }
-double lower(double running, double value) { return std::isnan(value) || value < running ? value : running; }
+double worse(double running, double value) {
+  return std::isnan(value) || value > running ? value : running;
+}
+double lower(double running, double value) {
+  return std::isnan(value) || value < running ? value : running;
+}
 
 // ============================================================================================
 // 1, 2. A test particle on a Kepler orbit around a point mass (G = M = 1, no softening).
@@ -54,8 +58,9 @@ constexpr double period = 2 * pi;  // 2 pi sqrt(a^3 / GM)
 constexpr double test_mass = 1e-3;
 
 // At pericentre r_p = a(1 - e), moving at v_p = sqrt(GM (1 + e) / (a (1 - e))).
-const Vec2 pericentre(semi_major_axis * (1 - eccentricity), 0.0);
-const Vec2 pericentre_velocity(0.0, std::sqrt((1 + eccentricity) / (semi_major_axis * (1 - eccentricity))));
+const Vec2 pericentre(semi_major_axis*(1 - eccentricity), 0.0);
+const Vec2 pericentre_velocity(0.0, std::sqrt((1 + eccentricity) /
+                                              (semi_major_axis * (1 - eccentricity))));
 
 template <class S>
 sph::Simulation<S> kepler(double dt) {
@@ -89,7 +94,8 @@ struct OrbitHistory {
   // The largest |error| over orbits [first, last).
   double worst(const std::vector<double>& e, int first, int last) const {
     double w = 0;
-    for (int k = first * steps_per_orbit; k < last * steps_per_orbit; ++k) w = worse(w, std::abs(e[k]));
+    for (int k = first * steps_per_orbit; k < last * steps_per_orbit; ++k)
+      w = worse(w, std::abs(e[k]));
     return w;
   }
   // The least-squares slope of the error against the orbit number: the secular drift per orbit.
@@ -170,7 +176,8 @@ sph::Particles<2> layer(bool with_walls) {
   const double m = wall_dx * wall_dx;  // density 1
   const auto add_row = [&](int j, sph::ParticleKind kind) {
     const double u = kind == sph::ParticleKind::fixed ? wall_u : layer_u;
-    for (int i = 0; i < wall_columns; ++i) p.add(Vec2((i + 0.5) * wall_dx, j * wall_dx), Vec2::Zero(), m, u, 0.0, kind);
+    for (int i = 0; i < wall_columns; ++i)
+      p.add(Vec2((i + 0.5) * wall_dx, j * wall_dx), Vec2::Zero(), m, u, 0.0, kind);
   };
   if (with_walls) {
     for (int j = -wall_rows; j < 0; ++j) add_row(j, sph::ParticleKind::fixed);
@@ -250,7 +257,8 @@ struct DragScene : sph::Scene<2> {
 template <int Dim>
 struct VelocityDiffusion {
   double kappa = 0.02;
-  sph::PairAcceleration pair_acceleration(const sph::Pair<Dim>& pr, const sph::ParticleView<Dim>& in) const {
+  sph::PairAcceleration pair_acceleration(const sph::Pair<Dim>& pr,
+                                          const sph::ParticleView<Dim>& in) const {
     sph::PairAcceleration out;
     const double f = kappa * in.m[pr.j] * pr.gradient_factor;
     for (int a = 0; a < Dim; ++a) out.a[a] = f * pr.v_ij[a];
@@ -279,7 +287,8 @@ struct ShepardVelocity {
     smoothed.assign(n, Vec<Dim>::Zero());
     calls.assign(n, 0);
   }
-  void gradient_pair(GradientSum<Dim>& sum, const sph::Pair<Dim>& pr, const sph::ParticleView<Dim>& in) const {
+  void gradient_pair(GradientSum<Dim>& sum, const sph::Pair<Dim>& pr,
+                     const sph::ParticleView<Dim>& in) const {
     const double w = sph::Kernel<Dim>::value(pr.r, pr.h_bar);
     sum.w += w;
     for (int a = 0; a < Dim; ++a) sum.wv[a] += w * in.v[a][pr.j];
@@ -372,7 +381,8 @@ Vec2 momentum(const sph::Particles<2>& p) {
 
 // ============================================================================================
 
-TEST_CASE("leapfrog on a Kepler orbit: bounded energy error, angular momentum to round-off", "[step-parts]") {
+TEST_CASE("leapfrog on a Kepler orbit: bounded energy error, angular momentum to round-off",
+          "[step-parts]") {
   const int orbits = 50, steps = 200;
   const OrbitHistory h = orbit_history<KeplerLeapfrog>(orbits, steps);
   const double first = h.worst(h.energy, 0, 5), last = h.worst(h.energy, orbits - 5, orbits);
@@ -383,12 +393,14 @@ TEST_CASE("leapfrog on a Kepler orbit: bounded energy error, angular momentum to
   // cancellation 1.5 - 2 = -0.5 in units of m).
   const double e0 = total_energy(kepler<KeplerLeapfrog>(period / steps));
   const double e0_error = std::abs(e0 / (-test_mass / (2 * semi_major_axis)) - 1);
-  std::printf("Kepler e = 0.5, leapfrog, P/%d, %d orbits: max |dE/E| first 5 orbits %.3e, last 5 %.3e, "
-              "drift %.2e per orbit; max |dL/L| %.2e; E0 against -GMm/2a %.1e\n", steps, orbits, first, last, drift,
-              l_worst, e0_error);
+  std::printf(
+      "Kepler e = 0.5, leapfrog, P/%d, %d orbits: max |dE/E| first 5 orbits %.3e, last 5 %.3e, "
+      "drift %.2e per orbit; max |dL/L| %.2e; E0 against -GMm/2a %.1e\n",
+      steps, orbits, first, last, drift, l_worst, e0_error);
   CHECK(e0_error <= 4e-15);
-  INFO("max |dE/E| over the first 5 orbits " << first << ", over the last 5 " << last << ", drift per orbit " << drift
-                                              << ", max |dL/L| " << l_worst);
+  INFO("max |dE/E| over the first 5 orbits " << first << ", over the last 5 " << last
+                                             << ", drift per orbit " << drift << ", max |dL/L| "
+                                             << l_worst);
   // The energy error at P/200 is of order (omega_peri dt)^2 ~ 1e-2 at pericentre; bound it so a
   // wrong sign or a missed half kick (first order, errors ~ 1e-1) fails.
   CHECK(first <= 1e-2);
@@ -404,19 +416,22 @@ TEST_CASE("leapfrog on a Kepler orbit: bounded energy error, angular momentum to
   CHECK(l_worst <= 1e-12);
 }
 
-TEST_CASE("predictor-corrector on a Kepler orbit: a drift-kick-drift leapfrog, bounded energy error",
-          "[step-parts]") {
+TEST_CASE(
+    "predictor-corrector on a Kepler orbit: a drift-kick-drift leapfrog, bounded energy error",
+    "[step-parts]") {
   const int orbits = 50, steps = 200;
   const OrbitHistory h = orbit_history<KeplerPredictorCorrector>(orbits, steps);
   const OrbitHistory lf = orbit_history<KeplerLeapfrog>(5, steps);
   const double first = h.worst(h.energy, 0, 5), last = h.worst(h.energy, orbits - 5, orbits);
   const double drift = h.drift_per_orbit(h.energy), l_drift = h.drift_per_orbit(h.angular);
   const double l_worst = h.worst(h.angular, 0, orbits);
-  std::printf("Kepler e = 0.5, predictor-corrector, P/%d, %d orbits: max |dE/E| first 5 orbits %.3e (leapfrog %.3e), "
-              "last 5 %.3e, drift %.2e per orbit; max |dL/L| %.2e, drift %.2e per orbit\n",
-              steps, orbits, first, lf.worst(lf.energy, 0, 5), last, drift, l_worst, l_drift);
-  INFO("max |dE/E| first 5 orbits " << first << ", last 5 " << last << ", drift per orbit " << drift << ", max |dL/L| "
-                                    << l_worst);
+  std::printf(
+      "Kepler e = 0.5, predictor-corrector, P/%d, %d orbits: max |dE/E| first 5 orbits %.3e "
+      "(leapfrog %.3e), "
+      "last 5 %.3e, drift %.2e per orbit; max |dL/L| %.2e, drift %.2e per orbit\n",
+      steps, orbits, first, lf.worst(lf.energy, 0, 5), last, drift, l_worst, l_drift);
+  INFO("max |dE/E| first 5 orbits " << first << ", last 5 " << last << ", drift per orbit " << drift
+                                    << ", max |dL/L| " << l_worst);
   // For a force that depends on the positions only, the midpoint predictor-corrector of
   // integrators.hpp is the drift-kick-drift leapfrog: r* = r + v dt/2 (drift), v' = v + a(r*) dt
   // (kick), r' = r + dt (v + a(r*) dt/2) = r* + v' dt/2 (drift); the predicted velocity v*
@@ -443,7 +458,8 @@ TEST_CASE("predictor-corrector on a Kepler orbit: a drift-kick-drift leapfrog, b
       x = mid + 0.5 * dt * v;
       worst = worse(worst, (sim.particles().position[0] - x).norm());
     }
-    std::printf("  predictor-corrector vs drift-kick-drift leapfrog over 5 orbits: max |dr| %.2e\n", worst);
+    std::printf("  predictor-corrector vs drift-kick-drift leapfrog over 5 orbits: max |dr| %.2e\n",
+                worst);
     INFO("max |r_PC - r_DKD| over 5 orbits " << worst);
     CHECK(worst <= 1e-10);
   }
@@ -453,16 +469,20 @@ TEST_CASE("both integrators are second order on a Kepler orbit", "[step-parts]")
   auto check_order = [](const char* name, auto error) {
     const double e100 = error(100), e200 = error(200), e400 = error(400);
     const double order1 = std::log2(e100 / e200), order2 = std::log2(e200 / e400);
-    std::printf("Kepler e = 0.5, %s, one period: |r(T) - r(0)| = %.3e, %.3e, %.3e for N = 100, 200, 400; "
-                "orders %.3f, %.3f\n", name, e100, e200, e400, order1, order2);
-    INFO(name << ": errors " << e100 << ", " << e200 << ", " << e400 << "; orders " << order1 << ", " << order2);
+    std::printf(
+        "Kepler e = 0.5, %s, one period: |r(T) - r(0)| = %.3e, %.3e, %.3e for N = 100, 200, 400; "
+        "orders %.3f, %.3f\n",
+        name, e100, e200, e400, order1, order2);
+    INFO(name << ": errors " << e100 << ", " << e200 << ", " << e400 << "; orders " << order1
+              << ", " << order2);
     // Second order: the error falls by 4 per halving.  The 0.2 allows for the O(dt^3) terms at
     // N = 100, where omega dt at pericentre is 0.22.
     CHECK((order1 >= 1.8 && order1 <= 2.2));
     CHECK((order2 >= 1.8 && order2 <= 2.2));
   };
   check_order("leapfrog", [](int n) { return return_error<KeplerLeapfrog>(n); });
-  check_order("predictor-corrector", [](int n) { return return_error<KeplerPredictorCorrector>(n); });
+  check_order("predictor-corrector",
+              [](int n) { return return_error<KeplerPredictorCorrector>(n); });
 }
 
 // ============================================================================================
@@ -473,12 +493,13 @@ template <class I>
 void gas_on_wall(const char* name) {
   const sph::Particles<2> initial = layer(true);
   const std::size_t n_wall = 2 * wall_rows * wall_columns;
-  sph::Simulation<GasOnWall<I>> sim(initial, periodic_in_x(), sph::IdealGas(5.0 / 3.0), standard_av, downward,
-                                    layer_settings());
+  sph::Simulation<GasOnWall<I>> sim(initial, periodic_in_x(), sph::IdealGas(5.0 / 3.0), standard_av,
+                                    downward, layer_settings());
   // (c) The wall completes the bottom row's kernel; without it the row misses half of it.
-  const double bottom = row_density(sim.particles(), 0, true), interior = row_density(sim.particles(), 7, true);
-  sph::Simulation<GasNoWall> bare(layer(false), periodic_in_x(), sph::IdealGas(5.0 / 3.0), standard_av, downward,
-                                  layer_settings());
+  const double bottom = row_density(sim.particles(), 0, true),
+               interior = row_density(sim.particles(), 7, true);
+  sph::Simulation<GasNoWall> bare(layer(false), periodic_in_x(), sph::IdealGas(5.0 / 3.0),
+                                  standard_av, downward, layer_settings());
   const double bare_bottom = row_density(bare.particles(), 0, false);
   const double bare_interior = row_density(bare.particles(), 7, false);
 
@@ -505,21 +526,27 @@ void gas_on_wall(const char* name) {
   const auto& p = sim.particles();
   long moved = 0;
   for (std::size_t i = 0; i < n_wall; ++i) {
-    const bool same = p.position[i] == initial.position[i] && p.velocity[i] == initial.velocity[i] &&
+    const bool same = p.position[i] == initial.position[i] &&
+                      p.velocity[i] == initial.velocity[i] &&
                       p.internal_energy[i] == initial.internal_energy[i];
     if (!same) ++moved;
   }
   std::string criteria_text;
   for (const auto& [criterion, count] : criteria)
     criteria_text += (criteria_text.empty() ? "" : ", ") + criterion + " " + std::to_string(count);
-  std::printf("gas on a wall, %s, t = %.3f (%ld steps; %s): bottom row density / interior %.4f with the wall, "
-              "%.4f without (%.4f / %.4f); fluid between y = %.4f dx and %.4f dx (wall's top row at -1 dx, "
-              "lid's bottom row at %d dx); %ld fixed particles moved; %ld of %ld step limits at a fixed particle\n",
-              name, sim.time(), sim.steps(), criteria_text.c_str(), bottom / interior, bare_bottom / bare_interior,
-              bare_bottom, bare_interior, lowest / wall_dx, highest / wall_dx, fluid_rows, moved, wall_limits, limits);
-  INFO(name << ": bottom/interior density " << bottom / interior << " with the wall, " << bare_bottom / bare_interior
-            << " without; fluid between " << lowest / wall_dx << " dx and " << highest / wall_dx << " dx; " << moved
-            << " fixed particles moved; " << wall_limits << " step limits at fixed particles");
+  std::printf(
+      "gas on a wall, %s, t = %.3f (%ld steps; %s): bottom row density / interior %.4f with the "
+      "wall, "
+      "%.4f without (%.4f / %.4f); fluid between y = %.4f dx and %.4f dx (wall's top row at -1 dx, "
+      "lid's bottom row at %d dx); %ld fixed particles moved; %ld of %ld step limits at a fixed "
+      "particle\n",
+      name, sim.time(), sim.steps(), criteria_text.c_str(), bottom / interior,
+      bare_bottom / bare_interior, bare_bottom, bare_interior, lowest / wall_dx, highest / wall_dx,
+      fluid_rows, moved, wall_limits, limits);
+  INFO(name << ": bottom/interior density " << bottom / interior << " with the wall, "
+            << bare_bottom / bare_interior << " without; fluid between " << lowest / wall_dx
+            << " dx and " << highest / wall_dx << " dx; " << moved << " fixed particles moved; "
+            << wall_limits << " step limits at fixed particles");
   CHECK(moved == 0);
   // (b) No fluid particle ever gets below the wall's top row, or above the lid's bottom row
   // (checked after every step).
@@ -550,15 +577,17 @@ TEST_CASE("fixed boundary particles hold a gas layer in a uniform field", "[step
 
 TEST_CASE("a fixed particle needs a scene whose boundaries hold fixed particles", "[step-parts]") {
   // (e) The default NoBoundaries would move it like a fluid particle: a clear error instead.
-  CHECK_THROWS_WITH(sph::Simulation<GasNoWall>(layer(true), periodic_in_x(), sph::IdealGas(5.0 / 3.0), downward,
-                                               layer_settings()),
-                    Catch::Contains("fixed"));
+  CHECK_THROWS_WITH(
+      sph::Simulation<GasNoWall>(layer(true), periodic_in_x(), sph::IdealGas(5.0 / 3.0), downward,
+                                 layer_settings()),
+      Catch::Contains("fixed"));
   // and a scene whose every particle is fixed has nothing to move.
   sph::Particles<2> all_fixed = layer(true);
   for (auto& k : all_fixed.kind) k = sph::ParticleKind::fixed;
-  CHECK_THROWS_WITH(sph::Simulation<GasOnWall<sph::Leapfrog<2>>>(all_fixed, periodic_in_x(), sph::IdealGas(5.0 / 3.0),
-                                                                 downward, layer_settings()),
-                    Catch::Contains("fixed"));
+  CHECK_THROWS_WITH(
+      sph::Simulation<GasOnWall<sph::Leapfrog<2>>>(
+          all_fixed, periodic_in_x(), sph::IdealGas(5.0 / 3.0), downward, layer_settings()),
+      Catch::Contains("fixed"));
 }
 
 // ============================================================================================
@@ -570,9 +599,10 @@ namespace {
 // step_fraction tau.
 struct DragResult {
   double vs_exponential = 0;  // max |v - v0 exp(-t/tau)| / |v0 exp(-t/tau)|
-  double vs_recurrence = 0;   // max |v - v_n| / |v_n|, v_n by the integrator's scalar recurrence below
-  double energy = 0;          // |E - E0| / E0, E = sum m (v^2/2 + u)
-  double kinetic_left = 0;    // E_kin(t) / E_kin(0)
+  double vs_recurrence =
+      0;              // max |v - v_n| / |v_n|, v_n by the integrator's scalar recurrence below
+  double energy = 0;  // |E - E0| / E0, E = sum m (v^2/2 + u)
+  double kinetic_left = 0;  // E_kin(t) / E_kin(0)
   long steps = 0, drag_limited = 0, other_limits = 0;
 };
 
@@ -585,7 +615,8 @@ DragResult drag_run(double step_fraction) {
     for (int j = 0; j < n; ++j) {
       const double angle = 2 * pi * (7 * i + 3 * j) / 100.0;
       const double speed = 0.05 * (1 + 0.5 * std::sin(2 * pi * (i + 2 * j) / n));
-      p.add(Vec2((i + 0.5) / n, (j + 0.5) / n), speed * Vec2(std::cos(angle), std::sin(angle)), 1.0 / (n * n), 0.0);
+      p.add(Vec2((i + 0.5) / n, (j + 0.5) / n), speed * Vec2(std::cos(angle), std::sin(angle)),
+            1.0 / (n * n), 0.0);
     }
   sph::Settings settings;
   settings.smoothing = sph::SmoothingLengthRule::neighbour_number(20);
@@ -631,8 +662,10 @@ DragResult drag_run(double step_fraction) {
   const double decay = std::exp(-sim.time() / tau);
   for (std::size_t i = 0; i < p.size(); ++i) {
     const Vec2 got = sim.particles().velocity[i];
-    r.vs_exponential = worse(r.vs_exponential, (got - decay * p.velocity[i]).norm() / (decay * p.velocity[i].norm()));
-    r.vs_recurrence = worse(r.vs_recurrence, (got - v * p.velocity[i]).norm() / (v * p.velocity[i].norm()));
+    r.vs_exponential = worse(r.vs_exponential,
+                             (got - decay * p.velocity[i]).norm() / (decay * p.velocity[i].norm()));
+    r.vs_recurrence =
+        worse(r.vs_recurrence, (got - v * p.velocity[i]).norm() / (v * p.velocity[i].norm()));
   }
   const auto [e1, k1] = energy();
   r.energy = std::abs(e1 - e0) / e0;
@@ -645,14 +678,17 @@ template <class I>
 void drag(const char* name) {
   const DragResult coarse = drag_run<I>(0.1), fine = drag_run<I>(0.05);
   const double order = std::log2(coarse.vs_exponential / fine.vs_exponential);
-  std::printf("linear drag, %s, to t = 2 tau, dt = 0.1 tau (%ld steps, %ld limited by \"drag\", %ld by others): "
-              "|v - v0 exp(-t/tau)|/|v| %.3e (dt = 0.05 tau: %.3e, order %.3f); vs the integrator's recurrence %.2e; "
-              "kinetic energy left %.4f, energy (kinetic + heat) error %.2e\n",
-              name, coarse.steps, coarse.drag_limited, coarse.other_limits, coarse.vs_exponential, fine.vs_exponential,
-              order, coarse.vs_recurrence, coarse.kinetic_left, coarse.energy);
-  INFO(name << ": relative velocity error " << coarse.vs_exponential << " (dt = 0.1 tau), " << fine.vs_exponential
-            << " (0.05 tau), order " << order << "; vs recurrence " << coarse.vs_recurrence << "; energy error "
-            << coarse.energy);
+  std::printf(
+      "linear drag, %s, to t = 2 tau, dt = 0.1 tau (%ld steps, %ld limited by \"drag\", %ld by "
+      "others): "
+      "|v - v0 exp(-t/tau)|/|v| %.3e (dt = 0.05 tau: %.3e, order %.3f); vs the integrator's "
+      "recurrence %.2e; "
+      "kinetic energy left %.4f, energy (kinetic + heat) error %.2e\n",
+      name, coarse.steps, coarse.drag_limited, coarse.other_limits, coarse.vs_exponential,
+      fine.vs_exponential, order, coarse.vs_recurrence, coarse.kinetic_left, coarse.energy);
+  INFO(name << ": relative velocity error " << coarse.vs_exponential << " (dt = 0.1 tau), "
+            << fine.vs_exponential << " (0.05 tau), order " << order << "; vs recurrence "
+            << coarse.vs_recurrence << "; energy error " << coarse.energy);
   // The step is the drag's 0.1 tau throughout (the Courant and acceleration limits are
   // 0.3 h/|v| ~ tau and 0.3 sqrt(h tau/|v|) ~ 0.5 tau here): 20 steps, the last possibly
   // shortened to land on t_end ("output time").
@@ -700,7 +736,8 @@ DiffusionResult diffusion_run(double dt) {
   std::uniform_real_distribution<double> noise(-0.1, 0.1);
   for (std::size_t i = 0; i < p.size(); ++i) {
     const Vec2& x = p.position[i];
-    p.velocity[i] = Vec2(0.3 * std::sin(2 * pi * x[1]) + noise(rng), 0.2 * std::cos(2 * pi * x[0]) + noise(rng));
+    p.velocity[i] = Vec2(0.3 * std::sin(2 * pi * x[1]) + noise(rng),
+                         0.2 * std::cos(2 * pi * x[0]) + noise(rng));
   }
   sph::Settings settings;
   // Fixed h (1.3 dx): a smoothing length chosen by neighbour count jumps when the count changes,
@@ -739,16 +776,20 @@ DiffusionResult diffusion_run(double dt) {
 
 }  // namespace
 
-TEST_CASE("a non-central pair acceleration: velocity diffusion conserves momentum and energy", "[step-parts]") {
+TEST_CASE("a non-central pair acceleration: velocity diffusion conserves momentum and energy",
+          "[step-parts]") {
   // kappa = 0.02 is a viscosity nu = kappa rho/2 = 0.01; nu dt / h^2 = 0.014 at dt = 0.004, far
   // inside the explicit diffusion limit (~0.1).
   const DiffusionResult coarse = diffusion_run(0.004), fine = diffusion_run(0.002);
   const double order = std::log2(coarse.energy / fine.energy);
-  std::printf("velocity diffusion to t = 0.2: net force at t = 0 %.2e; momentum drift %.2e; energy error %.3e at "
-              "dt = 0.004, %.3e at dt = 0.002 (order %.3f); kinetic energy left %.4f\n",
-              coarse.net_force, coarse.momentum, coarse.energy, fine.energy, order, coarse.kinetic_left);
-  INFO("net force " << coarse.net_force << ", momentum drift " << coarse.momentum << ", energy error " << coarse.energy
-                    << " / " << fine.energy << " (order " << order << "), kinetic energy left " << coarse.kinetic_left);
+  std::printf(
+      "velocity diffusion to t = 0.2: net force at t = 0 %.2e; momentum drift %.2e; energy error "
+      "%.3e at "
+      "dt = 0.004, %.3e at dt = 0.002 (order %.3f); kinetic energy left %.4f\n",
+      coarse.net_force, coarse.momentum, coarse.energy, fine.energy, order, coarse.kinetic_left);
+  INFO("net force " << coarse.net_force << ", momentum drift " << coarse.momentum
+                    << ", energy error " << coarse.energy << " / " << fine.energy << " (order "
+                    << order << "), kinetic energy left " << coarse.kinetic_left);
   // Each pair's accelerations are exactly antisymmetric (g_ij = g_ji, v_ij = -v_ji to the bit);
   // the sums over i's and j's neighbours add them in different orders: rounding only.
   CHECK(coarse.net_force <= 1e-13);
@@ -765,14 +806,16 @@ TEST_CASE("a non-central pair acceleration: velocity diffusion conserves momentu
   CHECK(coarse.kinetic_left > 0);
 }
 
-TEST_CASE("the gradient pass: a Shepard-smoothed velocity against a brute-force sum", "[step-parts]") {
+TEST_CASE("the gradient pass: a Shepard-smoothed velocity against a brute-force sum",
+          "[step-parts]") {
   sph::Particles<2> p = jittered_lattice(16, 0.2, 3);
   for (std::size_t i = 0; i < p.size(); ++i) {
     const Vec2& x = p.position[i];
     p.velocity[i] = Vec2(0.3 + 0.1 * std::sin(2 * pi * x[1]), -0.2 + 0.1 * std::sin(2 * pi * x[0]));
   }
   sph::Settings settings;
-  settings.smoothing = sph::SmoothingLengthRule::neighbour_number(20);  // h differs from particle to particle
+  settings.smoothing =
+      sph::SmoothingLengthRule::neighbour_number(20);  // h differs from particle to particle
   const sph::Box<2> box = unit_square();
   sph::Simulation<ShepardScene> sim(p, box, settings);
   const auto& q = sim.particles();
@@ -786,8 +829,9 @@ TEST_CASE("the gradient pass: a Shepard-smoothed velocity against a brute-force 
     Vec2 wv = w0 * q.velocity[i];
     for (std::size_t j = 0; j < q.size(); ++j) {
       if (j == i) continue;
-      const double wij = sph::Kernel<2>::value(box.separation(q.position[i], q.position[j]).norm(),
-                                               0.5 * (q.smoothing_length[i] + q.smoothing_length[j]));
+      const double wij =
+          sph::Kernel<2>::value(box.separation(q.position[i], q.position[j]).norm(),
+                                0.5 * (q.smoothing_length[i] + q.smoothing_length[j]));
       w += wij;
       wv += wij * q.velocity[j];
     }
@@ -797,8 +841,11 @@ TEST_CASE("the gradient pass: a Shepard-smoothed velocity against a brute-force 
     max_h = worse(max_h, q.smoothing_length[i]);
   }
   REQUIRE(2 * max_h < 0.5);  // the nearest image is the only one within the kernel
-  std::printf("Shepard velocity by the gradient pass vs brute force: max |difference| %.2e (the smoothing itself "
-              "moves v by up to %.2e)\n", worst, smoothing);
+  std::printf(
+      "Shepard velocity by the gradient pass vs brute force: max |difference| %.2e (the smoothing "
+      "itself "
+      "moves v by up to %.2e)\n",
+      worst, smoothing);
   INFO("max |smoothed - brute force| " << worst << "; max |brute force - v| " << smoothing);
   // Both sums add ~20 terms of size ~W(0,h) ~ 80 for velocities ~0.4: rounding is ~1e-15; the
   // neighbour list's periodic separation and Box::separation may differ in the last bit.
@@ -830,7 +877,8 @@ void recorded_hooks(const char* name, int kicks_per_step) {
   }
   sph::Settings settings;
   settings.smoothing = sph::SmoothingLengthRule::neighbour_number(20);
-  sph::Simulation<RecordedHydro<I>> sim(p, unit_square(), sph::IdealGas(5.0 / 3.0), standard_av, settings);
+  sph::Simulation<RecordedHydro<I>> sim(p, unit_square(), sph::IdealGas(5.0 / 3.0), standard_av,
+                                        settings);
   const auto& q = sim.particles();
   const auto& rec = sim.template term<Recorder<2>>();
   // after_density saw each particle's rho and P of this evaluation, to the bit.
@@ -844,19 +892,23 @@ void recorded_hooks(const char* name, int kicks_per_step) {
   double worst = 0, scale = 0;
   for (std::size_t i = 0; i < q.size(); ++i) {
     const bool moves = q.kind[i] == sph::ParticleKind::fluid;
-    if (rec.densities[i] != steps + 1 || rec.befores[i] != steps + 1 || rec.afters[i] != steps + 1) ++count_errors;
+    if (rec.densities[i] != steps + 1 || rec.befores[i] != steps + 1 || rec.afters[i] != steps + 1)
+      ++count_errors;
     if (rec.out_of_order[i] != 0) ++order_errors;
     if (rec.kicks[i] != (moves ? kicks_per_step * steps : 0)) ++kick_errors;
     const double actual = 0.5 * (q.velocity[i].squaredNorm() - p.velocity[i].squaredNorm());
     worst = worse(worst, std::abs(rec.kinetic[i] - actual));
     scale = worse(scale, 0.5 * worse(q.velocity[i].squaredNorm(), p.velocity[i].squaredNorm()));
   }
-  std::printf("hooks, %s, %d steps: %ld rho/P mismatches at after_density, %ld wrong call counts, %ld out of order, "
-              "%ld wrong kick counts; kinetic energy by with_kick vs actual: max |difference| %.2e "
-              "(of v^2/2 up to %.2f)\n",
-              name, steps, density_mismatch, count_errors, order_errors, kick_errors, worst, scale);
-  INFO(name << ": " << density_mismatch << " density mismatches, " << count_errors << " count errors, " << order_errors
-            << " order errors, " << kick_errors << " kick-count errors; worst kinetic difference " << worst);
+  std::printf(
+      "hooks, %s, %d steps: %ld rho/P mismatches at after_density, %ld wrong call counts, %ld out "
+      "of order, "
+      "%ld wrong kick counts; kinetic energy by with_kick vs actual: max |difference| %.2e "
+      "(of v^2/2 up to %.2f)\n",
+      name, steps, density_mismatch, count_errors, order_errors, kick_errors, worst, scale);
+  INFO(name << ": " << density_mismatch << " density mismatches, " << count_errors
+            << " count errors, " << order_errors << " order errors, " << kick_errors
+            << " kick-count errors; worst kinetic difference " << worst);
   CHECK(density_mismatch == 0);
   CHECK(count_errors == 0);
   CHECK(order_errors == 0);
@@ -870,7 +922,8 @@ void recorded_hooks(const char* name, int kicks_per_step) {
 
 }  // namespace
 
-TEST_CASE("after_density, before_force, after_force and with_kick see every particle, in order", "[step-parts]") {
-  recorded_hooks<sph::Leapfrog<2>>("leapfrog", 2);                      // two half kicks a step
+TEST_CASE("after_density, before_force, after_force and with_kick see every particle, in order",
+          "[step-parts]") {
+  recorded_hooks<sph::Leapfrog<2>>("leapfrog", 2);                       // two half kicks a step
   recorded_hooks<sph::PredictorCorrector<2>>("predictor-corrector", 1);  // one kick a step
 }

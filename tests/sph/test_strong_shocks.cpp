@@ -39,7 +39,7 @@ sph::Simulation<Gas<Pressure, 1>> expanding_hot_and_cold() {
   settings.smoothing = sph::SmoothingLengthRule::fixed();
   settings.density = sph::DensityForm::watkins();  // gather: rho = 1 exactly on the lattice
   return sph::Simulation<Gas<Pressure, 1>>(p, sph::Box<1>::open(), sph::IdealGas(1.4), settings,
-                                            sph::MonaghanGingold1983{0.0, 0.0});
+                                           sph::MonaghanGingold1983{0.0, 0.0});
 }
 
 // sum_i m_i (v_i . a_i + du_i/dt): zero when the force pass conserves energy.
@@ -68,7 +68,9 @@ Outcome run_tube(sph::ShockTubeSetup setup, const sph::SmoothingLengthRule& rule
   settings.smoothing = rule;
   sph::Simulation<Gas<Pressure, D>> sim(tube.particles, tube.box, sph::IdealGas(setup.gamma),
                                         sph::MonaghanGingold1983{1.0, 2.0}, settings);
-  const auto energy = [](const sph::Particles<D>& q) { return sph::kinetic_energy(q) + sph::thermal_energy(q); };
+  const auto energy = [](const sph::Particles<D>& q) {
+    return sph::kinetic_energy(q) + sph::thermal_energy(q);
+  };
   const double e0 = energy(sim.particles());
   Outcome out;
   try {
@@ -78,7 +80,8 @@ Outcome run_tube(sph::ShockTubeSetup setup, const sph::SmoothingLengthRule& rule
     out.message = e.what();
   }
   out.energy_change = std::abs(energy(sim.particles()) - e0) / e0;
-  out.momentum_residual = sph::total_momentum(sim.particles()).norm() / sph::total_mass(sim.particles());
+  out.momentum_residual =
+      sph::total_momentum(sim.particles()).norm() / sph::total_mass(sim.particles());
   return out;
 }
 
@@ -93,7 +96,8 @@ TEST_CASE("a cold particle beside a hot one cools at its own rate only with the 
     const double u = own.particles().internal_energy[i];
     const double own_rate = own.particles().energy_rate[i] / u;
     const double symmetric_rate = symmetric.particles().energy_rate[i] / u;
-    INFO("particle " << i << ": du/dt / u = " << own_rate << " (own work), " << symmetric_rate << " (symmetric)");
+    INFO("particle " << i << ": du/dt / u = " << own_rate << " (own work), " << symmetric_rate
+                     << " (symmetric)");
     // Own work: du/dt = (P/rho^2) drho/dt = -(gamma - 1) u div v, and div v = 1 exactly on this
     // lattice at h = dx: -0.4 to round-off (the sum has a few terms of order 1).
     CHECK(std::abs(own_rate + 0.4) <= 1e-12);
@@ -108,12 +112,15 @@ TEST_CASE("a cold particle beside a hot one cools at its own rate only with the 
   }
 }
 
-TEST_CASE("both energy equations conserve energy in the force pass to round-off", "[strong-shocks]") {
+TEST_CASE("both energy equations conserve energy in the force pass to round-off",
+          "[strong-shocks]") {
   double scale = 0;
-  const double own = energy_rate_residual(expanding_hot_and_cold<sph::PressureOwnWork>().particles(), scale);
+  const double own =
+      energy_rate_residual(expanding_hot_and_cold<sph::PressureOwnWork>().particles(), scale);
   INFO("own work: sum m (v.a + du/dt) = " << own << " against " << scale);
   CHECK(std::abs(own) <= 1e-13 * scale);
-  const double symmetric = energy_rate_residual(expanding_hot_and_cold<sph::PressureHernquistKatz>().particles(), scale);
+  const double symmetric =
+      energy_rate_residual(expanding_hot_and_cold<sph::PressureHernquistKatz>().particles(), scale);
   INFO("symmetric: sum m (v.a + du/dt) = " << symmetric << " against " << scale);
   CHECK(std::abs(symmetric) <= 1e-13 * scale);
 }
@@ -126,9 +133,9 @@ TEST_CASE("strong shocks run to the end with the own-pressure work", "[strong-sh
     const auto rule = sph::SmoothingLengthRule::from_density(4.0);
     const Outcome symmetric = run_tube<sph::PressureHernquistKatz, 1>(setup, rule, 0.2);
     const Outcome own = run_tube<sph::PressureOwnWork, 1>(setup, rule, 0.2);
-    INFO("symmetric: " << (symmetric.ran ? "ran" : symmetric.message) << "; own work: "
-                       << (own.ran ? "ran" : own.message) << ", energy change " << own.energy_change
-                       << ", momentum " << own.momentum_residual);
+    INFO("symmetric: " << (symmetric.ran ? "ran" : symmetric.message)
+                       << "; own work: " << (own.ran ? "ran" : own.message) << ", energy change "
+                       << own.energy_change << ", momentum " << own.momentum_residual);
     // The symmetric form stops, and says why (the cooling limit of a cold particle).
     CHECK(!symmetric.ran);
     CHECK_THAT(symmetric.message, Catch::Contains("cooling"));
@@ -146,9 +153,9 @@ TEST_CASE("strong shocks run to the end with the own-pressure work", "[strong-sh
     const auto rule = sph::SmoothingLengthRule::neighbour_number(60, 3);
     const Outcome symmetric = run_tube<sph::PressureHernquistKatz, 3>(setup, rule, 0.2);
     const Outcome own = run_tube<sph::PressureOwnWork, 3>(setup, rule, 0.2);
-    INFO("symmetric: " << (symmetric.ran ? "ran" : symmetric.message) << "; own work: "
-                       << (own.ran ? "ran" : own.message) << ", energy change " << own.energy_change
-                       << ", momentum " << own.momentum_residual);
+    INFO("symmetric: " << (symmetric.ran ? "ran" : symmetric.message)
+                       << "; own work: " << (own.ran ? "ran" : own.message) << ", energy change "
+                       << own.energy_change << ", momentum " << own.momentum_residual);
     CHECK(!symmetric.ran);
     CHECK_THAT(symmetric.message, Catch::Contains("cooling"));
     CHECK(own.ran);

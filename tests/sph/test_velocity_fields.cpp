@@ -156,9 +156,7 @@ double lattice_normalisation(double dx, double h, bool self_term) {
 template <int D>
 Matrix<D> general_matrix() {
   Eigen::Matrix3d a;
-  a << 0.7, -1.3, 0.4,
-       2.1, -0.5, 0.9,
-      -0.8, 1.6, 0.25;
+  a << 0.7, -1.3, 0.4, 2.1, -0.5, 0.9, -0.8, 1.6, 0.25;
   return a.topLeftCorner<D, D>();
 }
 
@@ -217,9 +215,10 @@ LinearResult check_linear_field(double eta, const sph::DensityForm& form) {
     worst_analytic = worse(worst_analytic, analytic / scale);
     if (!(e <= tolerance * scale) && bad++ == 0) first_bad = i;  // a NaN is bad too
   }
-  std::printf("linear field %dD, %-24s h = %.1f dx, %4zu interior particles: kappa - 1 = %+.3e, "
-              "worst |field - kappa exact| = %.1e |A|, |field - exact| = %.2e |A|\n",
-              D, form_name(form), eta, interior, kappa - 1, worst, worst_analytic);
+  std::printf(
+      "linear field %dD, %-24s h = %.1f dx, %4zu interior particles: kappa - 1 = %+.3e, "
+      "worst |field - kappa exact| = %.1e |A|, |field - exact| = %.2e |A|\n",
+      D, form_name(form), eta, interior, kappa - 1, worst, worst_analytic);
   INFO(D << "D, " << form_name(form) << ", h = " << eta << " dx: worst |field - kappa exact| = "
          << worst << " |A|; " << bad << " interior particles beyond the tolerance, the first "
          << first_bad << ": div v " << f.velocity_divergence[first_bad] << ", rho-dot/rho "
@@ -250,8 +249,8 @@ void check_linear_fields() {
     // kappa = 1, and the fields equal the analytic values to round-off.
     for (const auto& form : {sph::DensityForm::selhammar(), sph::DensityForm::watkins(true)}) {
       const LinearResult r = check_linear_field<1>(1.0, form);
-      INFO("1D, h = dx: kappa - 1 = " << r.kappa - 1 << ", worst |field - exact| = "
-                                       << r.analytic << " |A|");
+      INFO("1D, h = dx: kappa - 1 = " << r.kappa - 1 << ", worst |field - exact| = " << r.analytic
+                                      << " |A|");
       CHECK(std::abs(r.kappa - 1) <= 1e-14);  // a sum of 3 terms of size 1: a few ulp
       CHECK(r.analytic <= 1e-10);             // the tolerance of check_linear_field
     }
@@ -270,12 +269,8 @@ struct SineField {
 
   static SineField make() {
     Eigen::Matrix3d c3, phase3;
-    c3 << 1.0, 0.8, -0.6,
-          0.5, -0.7, 0.9,
-          0.4, 1.1, 0.6;
-    phase3 << 0.0, 0.3, 1.1,
-              2.0, 0.7, -0.4,
-              0.9, 1.7, 0.2;
+    c3 << 1.0, 0.8, -0.6, 0.5, -0.7, 0.9, 0.4, 1.1, 0.6;
+    phase3 << 0.0, 0.3, 1.1, 2.0, 0.7, -0.4, 0.9, 1.7, 0.2;
     return {c3.topLeftCorner<D, D>(), phase3.topLeftCorner<D, D>()};
   }
   Vec<D> operator()(const Vec<D>& x) const {
@@ -378,21 +373,22 @@ void check_sine_field() {
   const auto tolerance = sine_tolerance<D>();
   std::printf("sine field %dD, h = %.4f dx (kappa - 1 = %+.3e), %d -> %d cells:\n", D, e1.h_over_dx,
               e1.kappa - 1, coarse, 2 * coarse);
-  std::printf("  div v   |field - exact| %.3e -> %.3e (tolerance %.2e, %.2e), "
-              "|field - kappa exact| %.3e -> %.3e, ratio %.2f\n",
-              e1.divergence, e2.divergence, tolerance[0], tolerance[1], e1.divergence_kappa,
-              e2.divergence_kappa, e1.divergence_kappa / e2.divergence_kappa);
+  std::printf(
+      "  div v   |field - exact| %.3e -> %.3e (tolerance %.2e, %.2e), "
+      "|field - kappa exact| %.3e -> %.3e, ratio %.2f\n",
+      e1.divergence, e2.divergence, tolerance[0], tolerance[1], e1.divergence_kappa,
+      e2.divergence_kappa, e1.divergence_kappa / e2.divergence_kappa);
   if (D > 1) {
-    std::printf("  curl v  |field - exact| %.3e -> %.3e (tolerance %.2e, %.2e), "
-                "|field - kappa exact| %.3e -> %.3e, ratio %.2f\n",
-                e1.curl, e2.curl, tolerance[0], tolerance[1], e1.curl_kappa, e2.curl_kappa,
-                e1.curl_kappa / e2.curl_kappa);
+    std::printf(
+        "  curl v  |field - exact| %.3e -> %.3e (tolerance %.2e, %.2e), "
+        "|field - kappa exact| %.3e -> %.3e, ratio %.2f\n",
+        e1.curl, e2.curl, tolerance[0], tolerance[1], e1.curl_kappa, e2.curl_kappa,
+        e1.curl_kappa / e2.curl_kappa);
   }
   INFO(D << "D: h/dx " << e1.h_over_dx << " and " << e2.h_over_dx << "; div v error "
          << e1.divergence << " -> " << e2.divergence << ", curl v error " << e1.curl << " -> "
-         << e2.curl
-         << "; with kappa: div v " << e1.divergence_kappa << " -> " << e2.divergence_kappa
-         << ", curl v " << e1.curl_kappa << " -> " << e2.curl_kappa);
+         << e2.curl << "; with kappa: div v " << e1.divergence_kappa << " -> "
+         << e2.divergence_kappa << ", curl v " << e1.curl_kappa << " -> " << e2.curl_kappa);
   // A fixed neighbour number: the same h/dx at both resolutions, up to round-off.
   CHECK(std::abs(e1.h_over_dx - e2.h_over_dx) <= 1e-12 * e1.h_over_dx);
   CHECK(e1.divergence <= tolerance[0]);
@@ -527,9 +523,10 @@ void check_rate_is_time_derivative(const sph::DensityForm& form) {
   // wrong h in the rate would give (m and h vary by 20 % here).
   const double step = 1e-5, tolerance = 1e-7;
   const double error = rate_difference<D>(form, step), error_2 = rate_difference<D>(form, 2 * step);
-  std::printf("rho-dot vs central difference %dD, %-24s worst %.2e of max |rho-dot| at eps = 1e-5, "
-              "%.2e at 2e-5 (ratio %.2f)\n",
-              D, form_name(form), error, error_2, error_2 / error);
+  std::printf(
+      "rho-dot vs central difference %dD, %-24s worst %.2e of max |rho-dot| at eps = 1e-5, "
+      "%.2e at 2e-5 (ratio %.2f)\n",
+      D, form_name(form), error, error_2, error_2 / error);
   INFO(D << "D, " << form_name(form) << ": worst |difference - rho-dot| = " << error
          << " max |rho-dot| at eps " << step << ", " << error_2 << " at " << 2 * step);
   CHECK(error <= tolerance);
@@ -560,18 +557,21 @@ TEST_CASE("an after_density hook reads the fields of the same evaluation", "[vel
   auto p = lattice_particles<2>(Vec<2>::Zero(), Vec<2>::Ones(), 24);
   for (std::size_t i = 0; i < p.size(); ++i) {
     const Vec<2> x = p.position[i];
-    p.velocity[i] = Vec<2>(std::sin(two_pi * x[1]) - 0.3 * std::sin(two_pi * x[0]), 0.2 * std::cos(two_pi * x[0]));
+    p.velocity[i] = Vec<2>(std::sin(two_pi * x[1]) - 0.3 * std::sin(two_pi * x[0]),
+                           0.2 * std::cos(two_pi * x[0]));
   }
   sph::Settings s;
   s.smoothing = sph::SmoothingLengthRule::neighbour_number(20, 2);
-  sph::Simulation<ReadingScene> sim(p, sph::Box<2>::periodic_box(Vec<2>::Zero(), Vec<2>::Ones()), s);
+  sph::Simulation<ReadingScene> sim(p, sph::Box<2>::periodic_box(Vec<2>::Zero(), Vec<2>::Ones()),
+                                    s);
   for (int step = 0; step < 2; ++step) {  // the constructor's evaluation, then a step's
     const auto& term = sim.term<ReadsFields>();
     const auto& fields = sim.fields();
     bool same = true;
     double largest = 0;
     for (std::size_t i = 0; i < sim.particles().size(); ++i) {
-      same = same && term.seen_rate[i] == fields.density_rate[i] && term.seen_curl[i] == fields.velocity_curl[0][i];
+      same = same && term.seen_rate[i] == fields.density_rate[i] &&
+             term.seen_curl[i] == fields.velocity_curl[0][i];
       largest = std::max(largest, std::abs(fields.density_rate[i]));
     }
     INFO("evaluation " << step << ": largest |rho-dot| " << largest);

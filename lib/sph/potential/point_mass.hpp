@@ -25,16 +25,18 @@ struct PointMass {
   static constexpr bool active = true;
   static constexpr const char* timestep_name = "point-mass orbit";
 
-  double G = 1.0;                       ///< gravitational constant
-  double mass = 1.0;                    ///< M
-  Vec<D> centre = Vec<D>::Zero();       ///< where the mass sits
-  double softening = 0.0;               ///< epsilon (Plummer)
+  double G = 1.0;                  ///< gravitational constant
+  double mass = 1.0;               ///< M
+  Vec<D> centre = Vec<D>::Zero();  ///< where the mass sits
+  double softening = 0.0;          ///< epsilon (Plummer)
 
   PointMass() = default;
   PointMass(double g, double m, const Vec<D>& at = Vec<D>::Zero(), double eps = 0.0)
       : G(g), mass(m), centre(at), softening(eps) {
-    require(std::isfinite(g) && g > 0, "point mass: G must be positive and finite (got " + show(g) + ")");
-    require(std::isfinite(m) && m > 0, "point mass: the mass must be positive and finite (got " + show(m) + ")");
+    require(std::isfinite(g) && g > 0,
+            "point mass: G must be positive and finite (got " + show(g) + ")");
+    require(std::isfinite(m) && m > 0,
+            "point mass: the mass must be positive and finite (got " + show(m) + ")");
     require(at.allFinite(), "point mass: the centre must be finite");
     require(std::isfinite(eps) && eps >= 0, "point mass: the softening must be non-negative");
   }

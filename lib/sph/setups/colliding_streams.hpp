@@ -60,8 +60,10 @@ template <int D>
 CollidingStreams<D> make_colliding_streams(const CollidingStreamsSetup& s) {
   require(s.density > 0 && s.speed > 0 && s.mach > 0 && std::isfinite(s.mach),
           "colliding streams: density, speed and Mach number must be positive and finite");
-  require(s.spacing > 0 && s.length > 0 && s.width > 0, "colliding streams: spacing, length and width must be positive");
-  require(s.spacing <= 0.1 * s.length, "colliding streams: the spacing must be at most a tenth of the stream length");
+  require(s.spacing > 0 && s.length > 0 && s.width > 0,
+          "colliding streams: spacing, length and width must be positive");
+  require(s.spacing <= 0.1 * s.length,
+          "colliding streams: the spacing must be at most a tenth of the stream length");
   const GasState left{s.density, s.speed, s.pressure()}, right{s.density, -s.speed, s.pressure()};
   CollidingStreams<D> streams{Particles<D>{}, Box<D>{}, RiemannSolution(left, right, s.gamma), 0};
   // Open along x, periodic across.

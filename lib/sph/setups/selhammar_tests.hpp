@@ -39,9 +39,9 @@ namespace sph {
 
 /// Selhammar's weak shock tube (eq 20).
 struct WeakTubeSetup {
-  int cells = 16;           ///< n: cells across the dense slab (16: the paper's 16384 particles)
-  double mass = 1.0;        ///< total mass
-  double u = 0.01;          ///< internal energy per unit mass, everywhere
+  int cells = 16;     ///< n: cells across the dense slab (16: the paper's 16384 particles)
+  double mass = 1.0;  ///< total mass
+  double u = 0.01;    ///< internal energy per unit mass, everywhere
   double gamma = 5.0 / 3.0;
   bool printed_densities = false;  ///< the printed 1/4 and 1/16 instead of the geometry's 1/2, 1/16
 
@@ -56,7 +56,8 @@ inline Particles<3> make_weak_tube(const WeakTubeSetup& s) {
   require(s.cells >= 2 && s.cells % 2 == 0,
           "weak tube: the cells across the dense slab must be even and at least 2 (got " +
               show(s.cells) + ")");
-  require(s.mass > 0 && s.u > 0 && s.gamma > 1, "weak tube: mass, u and gamma - 1 must be positive");
+  require(s.mass > 0 && s.u > 0 && s.gamma > 1,
+          "weak tube: mass, u and gamma - 1 must be positive");
   const int n = s.cells;
   const auto dense = lattice<3>(LatticeType::body_centred, Vec<3>(0, 0, s.z_left),
                                 Vec<3>(1, 1, s.z_interface), std::array<int, 3>{n, n, n});
@@ -85,7 +86,7 @@ inline Box<3> weak_tube_box() {
 struct HomologousSphereSetup {
   int particles = 8192;
   double radius = 1.0, mass = 1.0;
-  double v0 = 2.0;     ///< v = -v0 r / R
+  double v0 = 2.0;  ///< v = -v0 r / R
   double u = 0.001;
   double gamma = 5.0 / 3.0;
   double disturbance = 0.05;  ///< each coordinate moved by up to this fraction of the spacing
@@ -93,7 +94,9 @@ struct HomologousSphereSetup {
 
   /// Eq 22: \f$ E = \tfrac{3}{10} M V_0^2 + uM \f$ (6/5 + 0.001 for the paper's numbers).
   double total_energy() const { return 0.3 * mass * v0 * v0 + u * mass; }
-  double density() const { return mass / (4.0 / 3.0 * std::numbers::pi * radius * radius * radius); }
+  double density() const {
+    return mass / (4.0 / 3.0 * std::numbers::pi * radius * radius * radius);
+  }
   /// Eqs 23-26: the density and radius if all the kinetic energy became heat adiabatically,
   /// \f$ \rho' = \rho_0 (u'/u_0)^{1/(\gamma-1)} \f$ with \f$ u' = E/M \f$.
   double zeroth_order_density() const {
@@ -106,7 +109,8 @@ struct HomologousSphereSetup {
 
 /// The particles of the homologous sphere, centred on the origin.
 inline Particles<3> make_homologous_sphere(const HomologousSphereSetup& s) {
-  require(s.particles >= 16, "homologous sphere: need at least 16 particles (got " + show(s.particles) + ")");
+  require(s.particles >= 16,
+          "homologous sphere: need at least 16 particles (got " + show(s.particles) + ")");
   require(s.radius > 0 && s.mass > 0 && s.u > 0 && s.gamma > 1 && std::isfinite(s.v0),
           "homologous sphere: radius, mass, u and gamma - 1 must be positive, v0 finite");
   require(s.disturbance >= 0 && s.disturbance < 0.5,
@@ -115,8 +119,9 @@ inline Particles<3> make_homologous_sphere(const HomologousSphereSetup& s) {
   const double spacing = std::cbrt(2 * volume);  // the body-centred cell holds two points
   const int half = static_cast<int>(std::ceil(1.3 * s.radius / spacing));
   const double side = half * spacing;
-  auto points = lattice<3>(LatticeType::body_centred, Vec<3>::Constant(-side), Vec<3>::Constant(side),
-                           std::array<int, 3>{2 * half, 2 * half, 2 * half});
+  auto points =
+      lattice<3>(LatticeType::body_centred, Vec<3>::Constant(-side), Vec<3>::Constant(side),
+                 std::array<int, 3>{2 * half, 2 * half, 2 * half});
   disturb<3>(points, s.disturbance * spacing, s.seed);
   std::vector<std::size_t> order(points.size());
   std::iota(order.begin(), order.end(), 0);

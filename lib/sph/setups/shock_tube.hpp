@@ -42,17 +42,17 @@ namespace sph {
 
 /// What a shock tube is made of.
 struct ShockTubeSetup {
-  GasState left{1.0, 0.0, 1.0};      ///< Sod (1978): rho 1, v 0, P 1
-  GasState right{0.125, 0.0, 0.1};   ///< rho 0.125, v 0, P 0.1
+  GasState left{1.0, 0.0, 1.0};     ///< Sod (1978): rho 1, v 0, P 1
+  GasState right{0.125, 0.0, 0.1};  ///< rho 0.125, v 0, P 0.1
   double gamma = 1.4;
-  double left_spacing = 1.0 / 800;   ///< lattice spacing on the left side
-  double half_length = 1.0;          ///< each side is this long; the x period is twice it
-  double width = 0.125;              ///< cross-section width in 2D/3D (periodic)
-  bool calibrate = true;             ///< scale each side's mass so its SPH density is nominal
+  double left_spacing = 1.0 / 800;  ///< lattice spacing on the left side
+  double half_length = 1.0;         ///< each side is this long; the x period is twice it
+  double width = 0.125;             ///< cross-section width in 2D/3D (periodic)
+  bool calibrate = true;            ///< scale each side's mass so its SPH density is nominal
   enum class Start { lattice, disturbed, settled };
-  Start start = Start::lattice;      ///< see the file comment; 2D/3D scenes want disturbed or settled
-  double disturbance = 0.2;          ///< disturbed: offsets up to this fraction of the spacing
-  std::uint64_t seed = 1996;         ///< for the disturbance
+  Start start = Start::lattice;  ///< see the file comment; 2D/3D scenes want disturbed or settled
+  double disturbance = 0.2;      ///< disturbed: offsets up to this fraction of the spacing
+  std::uint64_t seed = 1996;     ///< for the disturbance
 
   /// Sod's tube.
   static ShockTubeSetup sod() { return {}; }
@@ -92,14 +92,17 @@ void settle_side(std::vector<Vec<D>>& points, const Box<D>& box) {
 // Equal-mass lattices on both sides, nominal masses (before calibration).
 template <int D>
 ShockTube<D> shock_tube_lattices(const ShockTubeSetup& s) {
-  require(s.left_spacing > 0 && s.half_length > 0 && s.width > 0, "shock tube: spacing, length and width must be positive");
-  require(s.left_spacing < 0.1 * s.half_length, "shock tube: the left spacing must be well below the tube length");
+  require(s.left_spacing > 0 && s.half_length > 0 && s.width > 0,
+          "shock tube: spacing, length and width must be positive");
+  require(s.left_spacing < 0.1 * s.half_length,
+          "shock tube: the left spacing must be well below the tube length");
   const double L = s.half_length;
   // Left: cubic, isotropic.
   std::array<int, D> left_cells{}, right_cells{};
   left_cells[0] = std::max(1, static_cast<int>(std::lround(L / s.left_spacing)));
   const double dx_left = L / left_cells[0];
-  for (int a = 1; a < D; ++a) left_cells[a] = std::max(1, static_cast<int>(std::lround(s.width / dx_left)));
+  for (int a = 1; a < D; ++a)
+    left_cells[a] = std::max(1, static_cast<int>(std::lround(s.width / dx_left)));
   // Right: equal masses need (rho_L / rho_R) times the volume per particle.
   const double volume_ratio = s.left.density / s.right.density;
   const double dx_right = dx_left * root<D>(volume_ratio);
@@ -113,7 +116,8 @@ ShockTube<D> shock_tube_lattices(const ShockTubeSetup& s) {
   const double per_length = left_cells[0] / L * cross_left / volume_ratio;
   right_cells[0] = std::max(1, static_cast<int>(std::lround(per_length * L / cross_right)));
 
-  ShockTube<D> tube{Particles<D>{}, Box<D>{}, RiemannSolution(s.left, s.right, s.gamma), 0, 0, L / right_cells[0]};
+  ShockTube<D> tube{Particles<D>{},    Box<D>{}, RiemannSolution(s.left, s.right, s.gamma), 0, 0,
+                    L / right_cells[0]};
   Vec<D> lower = Vec<D>::Zero(), upper = Vec<D>::Constant(s.width);
   lower[0] = -L;
   upper[0] = L;
@@ -126,7 +130,8 @@ ShockTube<D> shock_tube_lattices(const ShockTubeSetup& s) {
   if (s.start != ShockTubeSetup::Start::lattice) {
     // Each side moves inside its own periodic box, so no particle crosses the interface.
     disturb<D>(left_points, s.disturbance * dx_left, s.seed, Box<D>::periodic_box(lower, mid_high));
-    disturb<D>(right_points, s.disturbance * dx_right, s.seed + 1, Box<D>::periodic_box(mid_low, upper));
+    disturb<D>(right_points, s.disturbance * dx_right, s.seed + 1,
+               Box<D>::periodic_box(mid_low, upper));
   }
   if (s.start == ShockTubeSetup::Start::settled) {
     settle_side<D>(left_points, Box<D>::periodic_box(lower, mid_high));
@@ -140,10 +145,12 @@ ShockTube<D> shock_tube_lattices(const ShockTubeSetup& s) {
   const double mass = s.left.density * cell_volume;
   const IdealGas gas(s.gamma);
   for (const auto& x : left_points) {
-    tube.particles.add(x, Vec<D>::Unit(0) * s.left.velocity, mass, gas.internal_energy(s.left.density, s.left.pressure));
+    tube.particles.add(x, Vec<D>::Unit(0) * s.left.velocity, mass,
+                       gas.internal_energy(s.left.density, s.left.pressure));
   }
   for (const auto& x : right_points) {
-    tube.particles.add(x, Vec<D>::Unit(0) * s.right.velocity, mass, gas.internal_energy(s.right.density, s.right.pressure));
+    tube.particles.add(x, Vec<D>::Unit(0) * s.right.velocity, mass,
+                       gas.internal_energy(s.right.density, s.right.pressure));
   }
   tube.left_count = static_cast<int>(left_points.size());
   tube.right_count = static_cast<int>(right_points.size());
@@ -182,8 +189,10 @@ ShockTube<D> make_shock_tube(const ShockTubeSetup& s, const SmoothingLengthRule&
       sum[side] += p.density[i];
       ++count[side];
     }
-    require(count[0] > 0 && count[1] > 0, "shock tube: too few particles for the kernel size (no interior to calibrate)");
-    const double scale[2] = {s.left.density / (sum[0] / count[0]), s.right.density / (sum[1] / count[1])};
+    require(count[0] > 0 && count[1] > 0,
+            "shock tube: too few particles for the kernel size (no interior to calibrate)");
+    const double scale[2] = {s.left.density / (sum[0] / count[0]),
+                             s.right.density / (sum[1] / count[1])};
     for (std::size_t i = 0; i < p.size(); ++i) p.mass[i] *= scale[p.position[i][0] < 0 ? 0 : 1];
   }
   return tube;
@@ -203,20 +212,26 @@ std::vector<double> x_velocity(const Particles<D>& p) {
 
 /// L1, L2, Linf of rho, v_x and P against the exact solution at time t, in the window.
 template <int D>
-std::vector<ErrorNorms> shock_tube_errors(const Particles<D>& p, const RiemannSolution& exact, double t,
-                                          const Selection& window = shock_tube_window()) {
+std::vector<ErrorNorms> shock_tube_errors(const Particles<D>& p, const RiemannSolution& exact,
+                                          double t, const Selection& window = shock_tube_window()) {
   auto at = [&](const Vec<D>& x) { return exact.sample(x[0], t); };
-  return {error_norms<D>("rho", p.position, p.density, [&](const Vec<D>& x) { return at(x).density; }, window),
-          error_norms<D>("v", p.position, x_velocity(p), [&](const Vec<D>& x) { return at(x).velocity; }, window),
-          error_norms<D>("P", p.position, p.pressure, [&](const Vec<D>& x) { return at(x).pressure; }, window)};
+  return {
+      error_norms<D>(
+          "rho", p.position, p.density, [&](const Vec<D>& x) { return at(x).density; }, window),
+      error_norms<D>(
+          "v", p.position, x_velocity(p), [&](const Vec<D>& x) { return at(x).velocity; }, window),
+      error_norms<D>(
+          "P", p.position, p.pressure, [&](const Vec<D>& x) { return at(x).pressure; }, window)};
 }
 
 /// The same as a Measurement for an error-against-run-time study: L1(rho), L1(v), L1(P).
 template <int D>
-Measurement shock_tube_measurement(const Particles<D>& p, const RiemannSolution& exact, double t, double spacing) {
+Measurement shock_tube_measurement(const Particles<D>& p, const RiemannSolution& exact, double t,
+                                   double spacing) {
   Measurement m;
   m.resolution = spacing;
-  for (const ErrorNorms& e : shock_tube_errors(p, exact, t)) m.errors.push_back({"L1(" + e.quantity + ")", e.L1});
+  for (const ErrorNorms& e : shock_tube_errors(p, exact, t))
+    m.errors.push_back({"L1(" + e.quantity + ")", e.L1});
   return m;
 }
 

@@ -36,9 +36,12 @@ struct MonaghanGingold1983 {
 
   MonaghanGingold1983() = default;
   MonaghanGingold1983(double a, double b, double nu2 = 0.01) : alpha(a), beta(b), nu2_factor(nu2) {
-    require(std::isfinite(a) && a >= 0, "artificial viscosity: alpha must be non-negative (got " + std::to_string(a) + ")");
-    require(std::isfinite(b) && b >= 0, "artificial viscosity: beta must be non-negative (got " + std::to_string(b) + ")");
-    require(std::isfinite(nu2) && nu2 > 0, "artificial viscosity: the nu^2 factor must be positive");
+    require(std::isfinite(a) && a >= 0,
+            "artificial viscosity: alpha must be non-negative (got " + std::to_string(a) + ")");
+    require(std::isfinite(b) && b >= 0,
+            "artificial viscosity: beta must be non-negative (got " + std::to_string(b) + ")");
+    require(std::isfinite(nu2) && nu2 > 0,
+            "artificial viscosity: the nu^2 factor must be positive");
   }
 
   std::string describe() const {

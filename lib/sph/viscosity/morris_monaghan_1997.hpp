@@ -49,7 +49,7 @@ struct MorrisMonaghan1997 {
 
   double alpha_min = 0.1;
   double alpha_max = 1.0;
-  double decay = 0.1;     ///< l in tau = h / (l c)
+  double decay = 0.1;       ///< l in tau = h / (l c)
   double alpha_start = -1;  ///< the coefficient at t = 0 (negative: alpha_min)
   double nu2_factor = 0.01;
 
@@ -61,10 +61,11 @@ struct MorrisMonaghan1997 {
   MorrisMonaghan1997(double a_min, double a_max, double l = 0.1, double nu2 = 0.01)
       : alpha_min(a_min), alpha_max(a_max), decay(l), nu2_factor(nu2) {
     require(std::isfinite(a_min) && a_min >= 0 && std::isfinite(a_max) && a_max >= a_min,
-            "Morris-Monaghan switch: need 0 <= alpha_min <= alpha_max (got " + show(a_min) +
-                ", " + show(a_max) + ")");
+            "Morris-Monaghan switch: need 0 <= alpha_min <= alpha_max (got " + show(a_min) + ", " +
+                show(a_max) + ")");
     require(std::isfinite(l) && l > 0, "Morris-Monaghan switch: the decay factor must be positive");
-    require(std::isfinite(nu2) && nu2 > 0, "Morris-Monaghan switch: the nu^2 factor must be positive");
+    require(std::isfinite(nu2) && nu2 > 0,
+            "Morris-Monaghan switch: the nu^2 factor must be positive");
   }
 
   std::string describe() const {

@@ -105,9 +105,10 @@ namespace sph {
 
 /// Which way round the third condition of eq 13 is read.
 enum class CompressionTest {
-  excess_beyond_compression,  ///< on where \f$ s - \bar c > (\bar{\dot\rho}/D\bar\rho)\, r \f$ (our reading)
-  as_printed,                 ///< on where \f$ (\bar{\dot\rho}/D\bar\rho)\, r > s - \bar c \f$
-  none,                       ///< eq 12 alone: on for every supersonic approach
+  /// on where \f$ s - \bar c > (\bar{\dot\rho}/D\bar\rho)\, r \f$ (our reading)
+  excess_beyond_compression,
+  as_printed,  ///< on where \f$ (\bar{\dot\rho}/D\bar\rho)\, r > s - \bar c \f$
+  none,        ///< eq 12 alone: on for every supersonic approach
 };
 
 /// The restricted von Neumann-Richtmyer viscosity, Selhammar (1997) eq 13.  A bracket term
@@ -161,7 +162,8 @@ struct RestrictedVonNeumannRichtmyer {
   template <int D>
   Bracket bracket(const Pair<D>& p, const ParticleView<D>& in) const {
     const double rho_bar = 0.5 * (in.rho[p.i] + in.rho[p.j]);
-    const double mu = active(p, in) ? p.h_bar * p.rv / (p.r2 + nu2_factor * p.h_bar * p.h_bar) : 0.0;
+    const double mu =
+        active(p, in) ? p.h_bar * p.rv / (p.r2 + nu2_factor * p.h_bar * p.h_bar) : 0.0;
     return {beta * mu * mu / rho_bar, p.r2 < p.support2 ? -mu : 0.0};
   }
 
@@ -184,7 +186,7 @@ enum class CollectiveUpdate {
 };
 /// What \f$ \Delta\mathbf v_i \f$ of eq 16 is.
 enum class CollectiveReading {
-  difference,     ///< \f$ \tilde{\mathbf v}_i - \mathbf v_i \f$: on when i outruns its neighbourhood
+  difference,  ///< \f$ \tilde{\mathbf v}_i - \mathbf v_i \f$: on when i outruns its neighbourhood
   mean_velocity,  ///< \f$ \tilde{\mathbf v}_i \f$ itself (eq 14's name): on when i moves against it
 };
 /// How the strength of eq 16 depends on the velocity difference.
@@ -217,7 +219,7 @@ struct SelhammarCollective {
   // The term's own per-particle fields, from the last evaluation.
   std::vector<Vec<D>> neighbourhood_velocity;  ///< \f$ \tilde{\mathbf v}_i \f$
   std::vector<double> rate;                    ///< \f$ k_i = N_n\eta c_i/h_i \f$ (0: no neighbours)
-  std::vector<Vec<D>> acceleration;  ///< the explicit update's acceleration (else zero)
+  std::vector<Vec<D>> acceleration;            ///< the explicit update's acceleration (else zero)
 
   SelhammarCollective() = default;
   SelhammarCollective(double eta_, double n_n,
@@ -228,13 +230,20 @@ struct SelhammarCollective {
     require(std::isfinite(eta_) && eta_ >= 0,
             "collective viscosity: eta must be non-negative (got " + show(eta_) + ")");
     require(std::isfinite(n_n) && n_n >= 1,
-            "collective viscosity: the neighbour number N_n must be at least 1 (got " +
-                show(n_n) + ")");
+            "collective viscosity: the neighbour number N_n must be at least 1 (got " + show(n_n) +
+                ")");
   }
   // (copies share nothing: the counter is reset)
   SelhammarCollective(const SelhammarCollective& o)
-      : eta(o.eta), neighbours(o.neighbours), normalisation(o.normalisation), update(o.update),
-        frame(o.frame), magnitude(o.magnitude), reading(o.reading), neighbourhood_velocity(o.neighbourhood_velocity), rate(o.rate),
+      : eta(o.eta),
+        neighbours(o.neighbours),
+        normalisation(o.normalisation),
+        update(o.update),
+        frame(o.frame),
+        magnitude(o.magnitude),
+        reading(o.reading),
+        neighbourhood_velocity(o.neighbourhood_velocity),
+        rate(o.rate),
         acceleration(o.acceleration) {}
   SelhammarCollective& operator=(const SelhammarCollective& o) {
     eta = o.eta;
@@ -253,11 +262,11 @@ struct SelhammarCollective {
 
   std::string describe() const {
     char s[160];
-    std::snprintf(s, sizeof s, "collective term, eta = %g, N_n = %g, %s, %s%s", eta, neighbours,
-                  normalisation == NeighbourhoodNormalisation::shepard ? "Shepard" : "1/(1-w_i)",
-                  update == CollectiveUpdate::exact_relaxation ? "exact relaxation"
-                                                               : "explicit kick",
-                  frame == CollectiveFrame::neighbourhood ? ", neighbourhood frame" : "");
+    std::snprintf(
+        s, sizeof s, "collective term, eta = %g, N_n = %g, %s, %s%s", eta, neighbours,
+        normalisation == NeighbourhoodNormalisation::shepard ? "Shepard" : "1/(1-w_i)",
+        update == CollectiveUpdate::exact_relaxation ? "exact relaxation" : "explicit kick",
+        frame == CollectiveFrame::neighbourhood ? ", neighbourhood frame" : "");
     return s;
   }
 
