@@ -361,3 +361,33 @@ TEST_CASE("Morris-Monaghan switch: alpha rises under compression and decays at r
               expected);
   CHECK(got == Approx(expected).epsilon(1e-3));
 }
+
+TEST_CASE("collective term: a particle with no neighbour but itself is left alone", "[selhammar]") {
+  // A small lattice at rest and, far from it, one particle moving at 1: with a fixed h it has no
+  // neighbour, so it has no neighbourhood, and the collective term must neither act on it nor
+  // produce a NaN (with either normalisation).
+  auto points = sph::lattice<3>(sph::LatticeType::body_centred, Vec<3>::Zero(), Vec<3>::Ones(),
+                                std::array<int, 3>{4, 4, 4});
+  const std::size_t lonely = points.size();
+  points.push_back(Vec<3>(10, 10, 10));
+  auto p = sph::make_particles<3>(points, 1.0 / 128, 0.01);
+  p.velocity[lonely] = Vec<3>(1, 0, 0);
+  sph::Settings settings;
+  settings.smoothing = sph::SmoothingLengthRule::fixed();
+  for (auto& h : p.smoothing_length) h = 0.3;
+  for (auto norm :
+       {sph::NeighbourhoodNormalisation::shepard, sph::NeighbourhoodNormalisation::as_printed}) {
+    sph::Simulation<CollectiveOnly> sim(p, sph::Box<3>::open(), settings,
+                                        Collective3(1.0, 64, norm));
+    sim.run_until(0.5);
+    const auto& q = sim.particles();
+    const auto& term = sim.term<Collective3>();
+    std::printf("isolated particle, %s: v = (%g, %g, %g), rate %g\n",
+                norm == sph::NeighbourhoodNormalisation::shepard ? "Shepard" : "printed",
+                q.velocity[lonely][0], q.velocity[lonely][1], q.velocity[lonely][2],
+                term.rate[lonely]);
+    CHECK(q.velocity[lonely] == Vec<3>(1, 0, 0));
+    CHECK(term.rate[lonely] == 0.0);
+    CHECK(q.internal_energy[lonely] == Approx(0.01));
+  }
+}
