@@ -144,16 +144,19 @@ struct RestrictedVonNeumannRichtmyer {
   /// Whether the term acts on this pair (conditions of eq 13).  Branch-free, for the SIMD loop.
   template <int D>
   bool active(const Pair<D>& p, const ParticleView<D>& in) const {
-    const double r = p.r > 0 ? p.r : 1.0;
-    const double approach = -p.rv / r;  // s_ij > 0 when approaching
+    // With s = -rv/r the approach speed, the conditions multiplied through by r > 0 and by
+    // D rho_bar > 0, so that the SIMD loop has no division: s > c_bar is -rv > c_bar r, and
+    // s - c_bar > (rho_dot_bar / (D rho_bar)) r is D rho_bar (-rv - c_bar r) > rho_dot_bar r^2.
     const double c_bar = 0.5 * (in.c[p.i] + in.c[p.j]);
     const double rho_bar = 0.5 * (in.rho[p.i] + in.rho[p.j]);
     const double rate_bar = 0.5 * (in.density_rate[p.i] + in.density_rate[p.j]);
-    const double explained = rate_bar / (D * rho_bar) * p.r;  // eq 11: compression's approach
-    const double excess = approach - c_bar;
-    const bool third = test == CompressionTest::excess_beyond_compression ? excess > explained
-                       : test == CompressionTest::as_printed              ? explained > excess
-                                                                          : true;
+    const double excess = -p.rv - c_bar * p.r;          // (s - c_bar) r
+    const double scaled_excess = D * rho_bar * excess;  // ... times D rho_bar
+    const double explained = rate_bar * p.r2;  // (rho_dot_bar/(D rho_bar)) r times r D rho_bar
+    const bool third = test == CompressionTest::excess_beyond_compression
+                           ? scaled_excess > explained
+                       : test == CompressionTest::as_printed ? explained > scaled_excess
+                                                             : true;
     return (p.rv < 0) & (excess > 0) & third;
   }
 
