@@ -132,6 +132,20 @@ inline std::size_t display_width(const std::string& s) {
   return width;
 }
 
+/// A method's name for a terminal: the TeX of a figure legend ("\\alpha = 1, \\beta = 2")
+/// becomes plain Unicode ("α = 1, β = 2"); other text is unchanged.
+inline std::string plain_text(std::string s) {
+  static const std::pair<const char*, const char*> symbols[] = {
+      {"\\varepsilon", "ε"}, {"\\epsilon", "ε"}, {"\\alpha", "α"}, {"\\beta", "β"},
+      {"\\gamma", "γ"},      {"\\Delta", "Δ"},   {"\\delta", "δ"}, {"\\eta", "η"},
+      {"\\rho", "ρ"},        {"\\nu", "ν"},      {"\\mu", "μ"},    {"\\sigma", "σ"}};
+  for (const auto& [tex, unicode] : symbols) {
+    for (std::size_t at = s.find(tex); at != std::string::npos; at = s.find(tex, at))
+      s.replace(at, std::char_traits<char>::length(tex), unicode);
+  }
+  return s;
+}
+
 /// printf into a std::string.
 template <class... Args>
 std::string format(const char* pattern, Args... args) {
@@ -292,8 +306,9 @@ class ErrorVsTime {
     for (const std::string& method : methods()) {
       bool first = true;
       for (const RunRecord& r : series(method)) {
-        std::vector<std::string> row = {first ? method : "", std::to_string(r.particles),
-                                        format("%.3e", r.resolution), format("%.3g", r.seconds)};
+        std::vector<std::string> row = {first ? convergence_detail::plain_text(method) : "",
+                                        std::to_string(r.particles), format("%.3e", r.resolution),
+                                        format("%.3g", r.seconds)};
         for (const std::string& q : names)
           row.push_back(r.has(q) ? format("%.3e", r.error(q)) : "-");
         rows.push_back(row);
@@ -349,7 +364,7 @@ class ErrorVsTime {
     heading.insert(heading.end(), names.begin(), names.end());
     rows.push_back(heading);
     for (const std::string& method : methods()) {
-      std::vector<std::string> row = {method};
+      std::vector<std::string> row = {convergence_detail::plain_text(method)};
       for (const std::string& q : names) {
         try {
           row.push_back(convergence_detail::format("%.2f", fit_of(method, q)));

@@ -134,3 +134,14 @@ TEST_CASE("convergence: helpers", "[convergence]") {
   CHECK_THROWS_AS(sph::fit_power_law({1, 1}, {2, 3}), sph::Error);
   CHECK_THROWS_AS(sph::fit_power_law({1, 2}, {0, 3}), sph::Error);
 }
+
+TEST_CASE("the table shows a method's TeX name as plain Unicode", "[convergence]") {
+  sph::ErrorVsTime study("study");
+  for (int n : {100, 200}) {
+    study.add({"\\alpha = 1, \\beta = 2", n, 1.0 / n, 0.1 * n, {{"L1(rho)", 1.0 / n}}});
+  }
+  const std::string table = study.table();
+  CHECK(table.find("α = 1, β = 2") != std::string::npos);
+  CHECK(table.find("\\alpha") == std::string::npos);
+  CHECK(sph::convergence_detail::plain_text("\\varepsilon, \\eta, \\rho") == "ε, η, ρ");
+}
