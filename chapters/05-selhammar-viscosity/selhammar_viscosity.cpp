@@ -195,13 +195,13 @@ struct Parameters {
     return c;
   }
   sph::MorrisMonaghan1997 switch_av() const { return {0.1, alpha, 0.1, nu2}; }
-  /// Whether the schemes are the chapter's (the claims are checked only then; conservation
-  /// always).
   sph::Settings settings() const {
     sph::Settings s;
     s.courant = courant;
     return s;
   }
+  // Whether the schemes are the chapter's (the claims are checked only then; conservation
+  // always).
   bool default_schemes() const {
     return courant == 0.3 && alpha == 1 && beta == 2 && nu2 == 1e-4 && eta == 1 &&
            !printed_normalisation && !explicit_kick && !difference_reading && !printed_densities;
@@ -255,7 +255,7 @@ void print_headline(const Parameters& par) {
 
 // ---- small helpers -----------------------------------------------------------------------
 
-/// Linear interpolation in a table x (increasing) -> y, held constant beyond its ends.
+// Linear interpolation in a table x (increasing) -> y, held constant beyond its ends.
 double interpolate(const std::vector<double>& x, const std::vector<double>& y, double at) {
   if (at <= x.front()) return y.front();
   if (at >= x.back()) return y.back();
@@ -264,7 +264,7 @@ double interpolate(const std::vector<double>& x, const std::vector<double>& y, d
   return y[k - 1] + f * (y[k] - y[k - 1]);
 }
 
-/// The momentum drift of a run: |P(t) - P(0)| against the momentum scale sum m|v| (chapter 3).
+// The momentum drift of a run: |P(t) - P(0)| against the momentum scale sum m|v| (chapter 3).
 template <int D>
 double momentum_drift(const sph::Particles<D>& p, const Vec<D>& start) {
   const double scale = sph::momentum_scale(p);
@@ -442,10 +442,10 @@ Stiffness step1_stiffness(const app::Chapter& chapter, const Parameters& par) {
 /// standard viscosity's; with the difference reading the gas has almost stopped -- its kinetic
 /// energy is 5 % of the standard run's, and 14 % of the momentum scale has gone.  So eq 16 must be
 /// read literally, and the rest of the chapter does.  The printed normalisation changes nothing
-/// visible here, and one more row foreshadows Step 3: the run without any viscosity has the
-/// same kinetic energy and the same error as the modified viscosity.
+/// visible here, and one more row foreshadows Step 3: the run without any viscosity has about
+/// the same kinetic energy and error as the modified viscosity.
 
-/// The Lagrangian reference for the weak tube at t = 20.
+// The Lagrangian reference for the weak tube at t = 20.
 sph::LagrangianProfile weak_tube_reference(const sph::WeakTubeSetup& setup, int zones_per_side) {
   sph::LagrangianOptions options;
   options.gamma = setup.gamma;
@@ -460,12 +460,12 @@ sph::LagrangianProfile weak_tube_reference(const sph::WeakTubeSetup& setup, int 
   return tube.profile();
 }
 
-/// L1 of v_z, P and rho over all particles against a reference profile.
+// L1 of v_z, P and rho over all particles against a reference profile.
 struct TubeErrors {
   double v = 0, pressure = 0, density = 0;
 };
-/// The window of the waves the viscosities make: the contact and the shock, between the two
-/// rarefactions, away from the free ends.
+// The window of the waves the viscosities make: the contact and the shock, between the two
+// rarefactions, away from the free ends.
 constexpr double window_low = -4.5, window_high = 1.5;
 TubeErrors tube_errors(const sph::Particles<3>& p, const sph::LagrangianProfile& ref,
                        bool window = false) {
@@ -483,8 +483,8 @@ TubeErrors tube_errors(const sph::Particles<3>& p, const sph::LagrangianProfile&
   return {e.v / n, e.pressure / n, e.density / n};
 }
 
-/// The kinetic energy and the largest speed of a Lagrangian profile (per unit area, the
-/// tube's cross-section is 1).
+// The kinetic energy and the largest speed of a Lagrangian profile (per unit area, the
+// tube's cross-section is 1).
 double ref_kinetic(const sph::LagrangianProfile& ref) {
   double e = 0;
   for (std::size_t k = 0; k < ref.radius.size(); ++k) {
@@ -505,7 +505,7 @@ struct Readings {
   double kinetic_standard = 0, kinetic_mean = 0, kinetic_difference = 0, kinetic_printed_norm = 0;
 };
 
-/// One run of the weak tube: what the steps keep.
+// One run of the weak tube: what the steps keep.
 struct TubeRun {
   std::string name;
   sph::Particles<3> particles;
@@ -518,7 +518,7 @@ struct TubeRun {
   double vnr_on[2] = {-1, -1}, collective_on[2] = {-1, -1};
 };
 
-/// The fraction of moving particles (|v| > 1e-3 c) on which the collective term acts.
+// The fraction of moving particles (|v| > 1e-3 c) on which the collective term acts.
 template <class Sim>
 double collective_fraction(const Sim& sim) {
   constexpr int D = Sim::D;
@@ -572,8 +572,8 @@ double peak_speed(const sph::Particles<3>& p) {
   return v;
 }
 
-/// The radius inside which a particle's neighbourhood does not reach the sphere's edge, at
-/// the start: R - 2h with h the median smoothing length (0.8 R at 8192 particles).
+// The radius inside which a particle's neighbourhood does not reach the sphere's edge, at
+// the start: R - 2h with h the median smoothing length (0.8 R at 8192 particles).
 double interior_radius(const sph::Particles<3>& p) {
   std::vector<double> h = p.smoothing_length;
   std::nth_element(h.begin(), h.begin() + h.size() / 2, h.end());
@@ -968,7 +968,7 @@ SphereRun run_sphere(const std::string& name, const sph::HomologousSphereSetup& 
   return run;
 }
 
-/// The reference: the Lagrangian sphere, with the energies after every step.
+// The reference: the Lagrangian sphere, with the energies after every step.
 struct SphereReference {
   std::vector<double> t, kinetic, thermal;
   double t_maximum = 0, peak_density = 0, t_least_kinetic = 0, peak_thermal = 0;
@@ -990,7 +990,7 @@ sph::Lagrangian1D reference_sphere(const sph::HomologousSphereSetup& setup, int 
       options);
 }
 
-/// The radius holding a fraction of the mass, from the mass coordinates of a Lagrangian profile.
+// The radius holding a fraction of the mass, from the mass coordinates of a Lagrangian profile.
 double radius_of_mass(const sph::LagrangianProfile& prof, double mass) {
   for (std::size_t k = 0; k < prof.radius.size(); ++k) {
     if (prof.mass_coordinate[k] >= mass) return prof.radius[k];
@@ -1022,7 +1022,7 @@ SphereReference sphere_reference(const sph::HomologousSphereSetup& setup, int zo
   return ref;
 }
 
-/// The reference's profile at time t.
+// The reference's profile at time t.
 sph::LagrangianProfile reference_profile(const sph::HomologousSphereSetup& setup, int zones,
                                          double t) {
   sph::Lagrangian1D gas = reference_sphere(setup, zones);
@@ -1030,13 +1030,13 @@ sph::LagrangianProfile reference_profile(const sph::HomologousSphereSetup& setup
   return gas.profile();
 }
 
-/// The thermal energy of a record at time t (the first record at or after t).
+// The thermal energy of a record at time t (the first record at or after t).
 double at_time(const std::vector<double>& t, const std::vector<double>& values, double when) {
   const auto k = static_cast<std::size_t>(std::lower_bound(t.begin(), t.end(), when) - t.begin());
   return values[std::min(k, values.size() - 1)];
 }
 
-/// The radius holding 90 % of the mass, about the centre of mass.
+// The radius holding 90 % of the mass, about the centre of mass.
 double radius_of_mass(const sph::Particles<3>& p, double fraction) {
   const Vec<3> centre = sph::centre_of_mass(p);
   std::vector<double> r(p.size());
