@@ -76,6 +76,32 @@ if(converter_warned)
   message(FATAL_ERROR "docs: the chapter pages have warnings (see the literate: lines above)")
 endif()
 
+# ---- 2b. Markup that Doxygen left raw: a bold that starts with "(" or holds a formula or code
+# shows its asterisks, and code in a heading shows its tags.  The code listings (one
+# <div class="line"> per line) may hold "**" of their own, so they are left out.
+if(STRICT)
+  file(GLOB pages "${WORK}/html/ch[0-9][0-9].html" "${WORK}/html/papers.html"
+                  "${WORK}/html/design.html" "${WORK}/html/index.html")
+  set(raw "")
+  foreach(page IN LISTS pages)
+    file(STRINGS "${page}" lines)
+    foreach(line IN LISTS lines)
+      if(line MATCHES "<div class=\"line\">" OR line MATCHES "class=\"fragment\"")
+        continue()
+      endif()
+      if(line MATCHES "\\*\\*[^ ]" OR line MATCHES "&lt;tt&gt;")
+        get_filename_component(name "${page}" NAME)
+        string(SUBSTRING "${line}" 0 160 shown)
+        string(APPEND raw "  ${name}: ${shown}\n")
+      endif()
+    endforeach()
+  endforeach()
+  if(NOT raw STREQUAL "")
+    message(FATAL_ERROR "docs: raw markup in the pages (use <b>...</b> for a bold that starts "
+                        "with a parenthesis or holds a formula or code):\n${raw}")
+  endif()
+endif()
+
 # ---- 3. MathJax, offline: the core, TeX input, SVG output with the TeX fonts ----------------
 if(MATHJAX)
   if(NOT EXISTS "${MATHJAX}/MathJax.js")
