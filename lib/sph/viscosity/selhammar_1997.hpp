@@ -95,7 +95,7 @@
 #include "sph/pair.hpp"
 #include "sph/terms.hpp"
 
-#include <atomic>
+#include <algorithm>
 #include <cmath>
 #include <cstdio>
 #include <string>
@@ -223,6 +223,7 @@ struct SelhammarCollective {
   std::vector<Vec<D>> neighbourhood_velocity;  ///< \f$ \tilde{\mathbf v}_i \f$
   std::vector<double> rate;                    ///< \f$ k_i = N_n\eta c_i/h_i \f$ (0: no neighbours)
   std::vector<Vec<D>> acceleration;            ///< the explicit update's acceleration (else zero)
+  std::vector<unsigned char> fell_back;  ///< 1 where the printed normalisation fell back (w_i >= 1)
 
   SelhammarCollective() = default;
   SelhammarCollective(double eta_, double n_n,
@@ -236,33 +237,6 @@ struct SelhammarCollective {
             "collective viscosity: the neighbour number N_n must be at least 1 (got " + show(n_n) +
                 ")");
   }
-  // (copies share nothing: the counter is reset)
-  SelhammarCollective(const SelhammarCollective& o)
-      : eta(o.eta),
-        neighbours(o.neighbours),
-        normalisation(o.normalisation),
-        update(o.update),
-        frame(o.frame),
-        magnitude(o.magnitude),
-        reading(o.reading),
-        neighbourhood_velocity(o.neighbourhood_velocity),
-        rate(o.rate),
-        acceleration(o.acceleration) {}
-  SelhammarCollective& operator=(const SelhammarCollective& o) {
-    eta = o.eta;
-    neighbours = o.neighbours;
-    normalisation = o.normalisation;
-    update = o.update;
-    frame = o.frame;
-    magnitude = o.magnitude;
-    reading = o.reading;
-    neighbourhood_velocity = o.neighbourhood_velocity;
-    rate = o.rate;
-    acceleration = o.acceleration;
-    fallbacks_ = 0;
-    return *this;
-  }
-
   std::string describe() const {
     char s[160];
     std::snprintf(
@@ -273,13 +247,14 @@ struct SelhammarCollective {
     return s;
   }
 
-  /// How many particle evaluations fell back from the printed normalisation to Shepard's
-  /// because \f$ w_i \ge 1 \f$ (a particle with very few neighbours), since the start.
-  long fallbacks() const { return fallbacks_.load(); }
+  /// How many particles of the last evaluation fell back from the printed normalisation to
+  /// Shepard's because \f$ w_i \ge 1 \f$ (a particle with very few neighbours).
+  long fallbacks() const { return std::count(fell_back.begin(), fell_back.end(), 1); }
 
   void resize(std::size_t n) {
     neighbourhood_velocity.assign(n, Vec<D>::Zero());
     rate.assign(n, 0.0);
+    fell_back.assign(n, 0);
     acceleration.assign(n, Vec<D>::Zero());
   }
 
@@ -306,11 +281,8 @@ struct SelhammarCollective {
     double norm = sum.w;
     if (normalisation == NeighbourhoodNormalisation::as_printed) {
       const double self = in.m[i] / in.rho[i] * K::value(0.0, in.h[i]);
-      if (self < 1) {
-        norm = 1 - self;
-      } else {
-        fallbacks_.fetch_add(1, std::memory_order_relaxed);
-      }
+      fell_back[i] = !(self < 1);
+      if (self < 1) norm = 1 - self;
     }
     for (int a = 0; a < D; ++a) neighbourhood_velocity[i][a] = sum.wv[a] / norm;
     rate[i] = neighbours * eta * in.c[i] / in.h[i];
@@ -389,9 +361,6 @@ struct SelhammarCollective {
   double signal_speed(std::size_t i, const ParticleView<D>& in) const {
     return 1.2 * eta * in.c[i];
   }
-
- private:
-  mutable std::atomic<long> fallbacks_{0};
 };
 
 /// Where the restricted vNR term acts: of the pairs inside the kernel that approach faster than
