@@ -2,6 +2,8 @@
 // with all threads.  Run it as `build/bench/bench` (or `--quick` for a smoke run).  The numbers
 // go in the design page and the chapters' text; timed tests are not used for this, since test
 // machines are shared and noisy.
+#include "bench_evrard.hpp"
+#include "bench_gravity.hpp"
 #include "bench_hydro.hpp"
 #if __has_include("bench_neighbours.hpp")
 #include "bench_neighbours.hpp"
@@ -15,17 +17,21 @@
 #include <string>
 
 int main(int argc, char** argv) {
-  CLI::App app{"SPH course benchmarks: neighbour search and hydrodynamic steps in 1D/2D/3D"};
+  CLI::App app{
+      "SPH course benchmarks: neighbour search, hydrodynamic steps in 1D/2D/3D, self-gravity, the "
+      "Evrard collapse"};
   bool quick = false;
   std::string only;
   app.add_flag("--quick", quick, "small sizes, a few seconds (for smoke tests)");
-  app.add_option("--only", only, "run one part: neighbours or hydro")
-      ->check(CLI::IsMember({"neighbours", "hydro"}));
+  app.add_option("--only", only, "run one part: neighbours, hydro, gravity or evrard")
+      ->check(CLI::IsMember({"neighbours", "hydro", "gravity", "evrard"}));
   CLI11_PARSE(app, argc, argv);
   std::printf("SPH course benchmark: %d hardware threads\n", omp_get_num_procs());
 #ifdef SPH_BENCH_NEIGHBOURS
-  if (only != "hydro") bench::bench_neighbours(quick);
+  if (only.empty() || only == "neighbours") bench::bench_neighbours(quick);
 #endif
-  if (only != "neighbours") bench::bench_hydro(quick);
+  if (only.empty() || only == "hydro") bench::bench_hydro(quick);
+  if (only.empty() || only == "gravity") bench::bench_gravity(quick);
+  if (only.empty() || only == "evrard") bench::bench_evrard(quick);
   return 0;
 }

@@ -271,6 +271,15 @@ bool Chapter::check(bool ok, const std::string& message) {
   return ok;
 }
 
+bool Chapter::claim(bool ok, const std::string& what, bool checked) {
+  if (!checked) {
+    *out_ << "  [" << (ok ? "as claimed" : "not as claimed") << "] " << what << "\n" << std::flush;
+    return ok;
+  }
+  *out_ << "  [" << (ok ? "ok" : "FAILED") << "] " << what << "\n" << std::flush;
+  return check(ok, what);
+}
+
 int Chapter::failed_checks() const {
   return static_cast<int>(
       std::count_if(checks_.begin(), checks_.end(), [](const Check& c) { return !c.ok; }));

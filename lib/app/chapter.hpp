@@ -169,6 +169,12 @@ class Chapter {
   /// finish() returns non-zero.  Returns \p ok.
   bool check(bool ok, const std::string& message);
 
+  /// A claim of the chapter, printed on one line.  When \p checked is true it is a check
+  /// ("[ok]" or "[FAILED]", recorded as check() records it); when false -- the options have
+  /// changed the schemes the claim is about -- it is only reported, "[as claimed]" or
+  /// "[not as claimed]", and cannot fail the run.  Returns \p ok.
+  bool claim(bool ok, const std::string& what, bool checked = true);
+
   /// Number of failed checks so far.
   [[nodiscard]] int failed_checks() const;
 

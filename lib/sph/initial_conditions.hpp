@@ -29,6 +29,7 @@
 #include <array>
 #include <cmath>
 #include <cstdint>
+#include <numbers>
 #include <numeric>
 #include <string>
 #include <vector>
@@ -212,6 +213,64 @@ void disturb(std::vector<Vec<D>>& points, double amplitude, std::uint64_t seed,
     for (int a = 0; a < D; ++a) x[a] += random.uniform(-amplitude, amplitude);
     x = box.wrap(x);
   }
+}
+
+/// A ball of exactly n points: the body-centred lattice whose cell holds two points per
+/// \f$ 2V/n \f$ (V the ball's volume), each coordinate moved by up to `disturbance` of the
+/// spacing, and the n points nearest the centre kept, sorted by their distance from it (ties in
+/// lattice order).  Selhammar's "slightly disturbed cubic centred grid" of his spheres
+/// (sect. 5.2 and 5.3); the homologous sphere and the Evrard sphere start from it.
+inline std::vector<Vec<3>> disturbed_lattice_ball(int n, double radius, double disturbance,
+                                                  std::uint64_t seed) {
+  require(n >= 1, "disturbed_lattice_ball: need at least one point");
+  require(std::isfinite(radius) && radius > 0,
+          "disturbed_lattice_ball: the radius must be positive and finite");
+  require(disturbance >= 0 && disturbance < 0.5,
+          "disturbed_lattice_ball: the disturbance must lie in [0, 0.5) of the spacing");
+  const double volume = 4.0 / 3.0 * std::numbers::pi * std::pow(radius, 3) / n;
+  const double spacing = std::cbrt(2 * volume);  // the body-centred cell holds two points
+  const int half = static_cast<int>(std::ceil(1.3 * radius / spacing));
+  const double side = half * spacing;
+  auto points =
+      lattice<3>(LatticeType::body_centred, Vec<3>::Constant(-side), Vec<3>::Constant(side),
+                 std::array<int, 3>{2 * half, 2 * half, 2 * half});
+  disturb<3>(points, disturbance * spacing, seed);
+  std::vector<std::size_t> order(points.size());
+  std::iota(order.begin(), order.end(), std::size_t{0});
+  std::stable_sort(order.begin(), order.end(), [&](std::size_t a, std::size_t b) {
+    return points[a].squaredNorm() < points[b].squaredNorm();
+  });
+  std::vector<Vec<3>> kept(static_cast<std::size_t>(n));
+  for (int k = 0; k < n; ++k) kept[k] = points[order[k]];
+  return kept;
+}
+
+/// n equal masses (total 1) at random in the unit ball; with `cusp`, each radius r is mapped to
+/// r^(3/2), which turns the uniform density into one proportional to 1/r (the mass inside r
+/// goes from r^3 to r^2), the profile of the Evrard collapse.  Each particle's h is set from the
+/// density at its radius so that about `neighbours` particles lie within 2h: the sphere on
+/// which the gravity modules are measured (tests, bench), without a density pass.
+inline Particles<3> random_ball(std::size_t n, std::uint64_t seed, bool cusp,
+                                double neighbours = 64) {
+  require(n >= 1 && neighbours > 0, "random_ball: need n >= 1 and a positive neighbour number");
+  constexpr double pi = std::numbers::pi;
+  Random random(seed);
+  Particles<3> p;
+  while (p.size() < n) {
+    Vec<3> x(random.uniform(-1, 1), random.uniform(-1, 1), random.uniform(-1, 1));
+    const double r = x.norm();
+    if (r >= 1 || r == 0) continue;
+    if (cusp) x *= std::sqrt(r);
+    p.add(x, Vec<3>::Zero(), 1.0 / static_cast<double>(n));
+  }
+  for (std::size_t i = 0; i < n; ++i) {
+    // number density: n / (4 pi / 3) uniform, n / (2 pi r) for the 1/r profile
+    const double r = std::max(p.position[i].norm(), 1e-3);
+    const double density =
+        cusp ? static_cast<double>(n) / (2 * pi * r) : static_cast<double>(n) / (4.0 / 3.0 * pi);
+    p.smoothing_length[i] = 0.5 * std::cbrt(neighbours / (4.0 / 3.0 * pi * density));
+  }
+  return p;
 }
 
 /// Put points that are near in space near in memory: sort them by cells of size `cell`, the

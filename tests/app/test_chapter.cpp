@@ -261,3 +261,21 @@ TEST_CASE("durations read naturally", "[app]") {
   CHECK(app::format_duration(245.0) == "4 min 05 s");
   CHECK(app::format_duration(7380.0) == "2 h 03 min");
 }
+
+TEST_CASE("a claim is a check only when it is about the chapter's own schemes", "[app]") {
+  const fs::path dir = scratch("claims");
+  CommandLine line({"ch99", "--output", dir.string()});
+  app::Chapter chapter("99-test", "Chapter 99: a test", line.argc(), line.argv());
+  std::ostringstream out, err;
+  chapter.set_streams(out, err);
+  REQUIRE(chapter.parse() == -1);
+  CHECK_FALSE(chapter.claim(false, "reported only", false));
+  CHECK(chapter.claim(true, "holds", true));
+  CHECK(chapter.failed_checks() == 0);
+  CHECK(out.str().find("  [not as claimed] reported only\n") != std::string::npos);
+  CHECK(out.str().find("  [ok] holds\n") != std::string::npos);
+  CHECK_FALSE(chapter.claim(false, "fails", true));
+  CHECK(out.str().find("  [FAILED] fails\n") != std::string::npos);
+  CHECK(chapter.failed_checks() == 1);
+  CHECK(chapter.finish() == 1);
+}

@@ -198,7 +198,7 @@ TEST_CASE("collective term: kinetic plus internal energy is conserved to round-o
   std::normal_distribution<double> gauss(0.0, 0.1);
   std::vector<Vec<3>> noise(2 * 6 * 6 * 6);
   for (auto& v : noise) v = Vec<3>(gauss(rng), gauss(rng), gauss(rng));
-  auto p = lattice_cube(6, 0.01, [&](const Vec<3>& x, std::size_t i) {
+  auto p = lattice_cube(6, 0.01, [&](const Vec<3>& x, std::size_t i) -> Vec<3> {
     return Vec<3>(0.5 * std::sin(2 * M_PI * x[1]), 0.0, 0.0) + noise[i];
   });
   // (The explicit kick with eta = 1 overshoots so far that it cools particles below zero

@@ -115,21 +115,8 @@ inline Particles<3> make_homologous_sphere(const HomologousSphereSetup& s) {
           "homologous sphere: radius, mass, u and gamma - 1 must be positive, v0 finite");
   require(s.disturbance >= 0 && s.disturbance < 0.5,
           "homologous sphere: the disturbance must lie in [0, 0.5) of the spacing");
-  const double volume = 4.0 / 3.0 * std::numbers::pi * std::pow(s.radius, 3) / s.particles;
-  const double spacing = std::cbrt(2 * volume);  // the body-centred cell holds two points
-  const int half = static_cast<int>(std::ceil(1.3 * s.radius / spacing));
-  const double side = half * spacing;
-  auto points =
-      lattice<3>(LatticeType::body_centred, Vec<3>::Constant(-side), Vec<3>::Constant(side),
-                 std::array<int, 3>{2 * half, 2 * half, 2 * half});
-  disturb<3>(points, s.disturbance * spacing, s.seed);
-  std::vector<std::size_t> order(points.size());
-  std::iota(order.begin(), order.end(), 0);
-  std::stable_sort(order.begin(), order.end(), [&](std::size_t a, std::size_t b) {
-    return points[a].squaredNorm() < points[b].squaredNorm();
-  });
-  std::vector<Vec<3>> kept(s.particles);
-  for (int k = 0; k < s.particles; ++k) kept[k] = points[order[k]];
+  const std::vector<Vec<3>> kept =
+      disturbed_lattice_ball(s.particles, s.radius, s.disturbance, s.seed);
   Particles<3> p = make_particles<3>(kept, s.mass / s.particles, s.u);
   for (std::size_t i = 0; i < p.size(); ++i) p.velocity[i] = -s.v0 / s.radius * p.position[i];
   return p;

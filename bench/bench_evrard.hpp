@@ -1,0 +1,104 @@
+#pragma once
+// The cost of the whole Evrard step (chapter 6): hydrodynamics with the standard or the
+// modified viscosity, plus tree gravity, on the machine's threads.  Measured at two moments of
+// the collapse -- the first steps (the sphere as set up) and around t = 0.8, when the centre has
+// collapsed and the neighbour search and the tree work hardest -- as microseconds per
+// particle-step, with the gravity evaluation alone timed on the same particles, so that the
+// hydrodynamic part is the difference.  Then, unless --quick, the whole 8192-particle collapse
+// to t = 3 (the chapter's Fig 5 run).
+
+#include "sph/gravity/tree.hpp"
+#include "sph/setups/evrard.hpp"
+#include "sph/simulation.hpp"
+#include "sph/terms/pressure.hpp"
+#include "sph/viscosity/monaghan_gingold_1983.hpp"
+#include "sph/viscosity/selhammar_1997.hpp"
+
+#include <algorithm>
+#include <chrono>
+#include <cstdio>
+#include <vector>
+
+namespace bench {
+
+struct EvrardStandard : sph::Scene<3> {
+  using Terms = sph::Terms<sph::PressureOwnWork, sph::MonaghanGingold1983>;
+  using Gravity = sph::TreeGravity;
+};
+struct EvrardModified : sph::Scene<3> {
+  using Terms = sph::Terms<sph::PressureOwnWork, sph::RestrictedVonNeumannRichtmyer,
+                           sph::SelhammarCollective<3>>;
+  using Gravity = sph::TreeGravity;
+};
+
+inline double seconds_since(std::chrono::steady_clock::time_point t0) {
+  return std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+}
+
+// Median over `repeats` blocks of `steps` steps: microseconds per particle-step of the whole
+// step, and of its gravity (the tree's own build and walk time).
+template <class Scene>
+void time_block(sph::Simulation<Scene>& sim, int steps, int repeats, const char* label) {
+  const double n = static_cast<double>(sim.particles().size());
+  std::vector<double> whole, gravity;
+  for (int r = 0; r < repeats; ++r) {
+    double g = 0;
+    const auto t0 = std::chrono::steady_clock::now();
+    for (int s = 0; s < steps; ++s) {
+      sim.step();
+      g += sim.gravity().statistics().build_seconds + sim.gravity().statistics().walk_seconds;
+    }
+    whole.push_back(seconds_since(t0) * 1e6 / (steps * n));
+    gravity.push_back(g * 1e6 / (steps * n));
+  }
+  std::sort(whole.begin(), whole.end());
+  std::sort(gravity.begin(), gravity.end());
+  const double w = whole[whole.size() / 2], g = gravity[gravity.size() / 2];
+  double rho_max = 0;
+  for (double rho : sim.particles().density) rho_max = std::max(rho_max, rho);
+  std::printf(
+      "  %-28s t = %5.3f  rho_max %6.0f  step %5.2f us/particle, gravity %5.2f, "
+      "the rest %5.2f\n",
+      label, sim.time(), rho_max, w, g, w - g);
+}
+
+template <class Scene>
+void bench_evrard_scene(int particles, const typename Scene::Terms& terms, const char* name,
+                        bool quick) {
+  sph::EvrardSetup setup;
+  setup.particles = particles;
+  sph::Simulation<Scene> sim(sph::make_evrard_sphere(setup), sph::Box<3>::open(), terms,
+                             sph::IdealGas{setup.gamma});
+  char label[96];
+  std::snprintf(label, sizeof label, "%s, N = %d, start", name, particles);
+  time_block(sim, quick ? 2 : 5, quick ? 1 : 3, label);
+  if (quick) return;
+  sim.run_until(0.78);
+  std::snprintf(label, sizeof label, "%s, N = %d, t = 0.8", name, particles);
+  time_block(sim, 5, 3, label);
+}
+
+inline void bench_evrard(bool quick) {
+  std::printf("\nEvrard collapse: the whole step (hydro + tree gravity), %d threads\n",
+              omp_get_max_threads());
+  const sph::MonaghanGingold1983 standard{1, 2, 1e-4};
+  for (int n : {8192, 22000}) {
+    if (quick && n > 8192) break;
+    bench_evrard_scene<EvrardStandard>(n, {{}, standard}, "standard", quick);
+    bench_evrard_scene<EvrardModified>(n, {{}, {2, 1e-4}, {1, 64}}, "modified", quick);
+  }
+  if (quick) return;
+  sph::EvrardSetup setup;
+  const auto t0 = std::chrono::steady_clock::now();
+  sph::Simulation<EvrardStandard> sim(sph::make_evrard_sphere(setup), sph::Box<3>::open(),
+                                      EvrardStandard::Terms{{}, standard},
+                                      sph::IdealGas{setup.gamma});
+  sim.run_until(3.0);
+  const double s = seconds_since(t0);
+  std::printf(
+      "  the 8192-particle collapse to t = 3, standard viscosity: %ld steps, %.1f s, "
+      "%.2f us per particle-step\n",
+      sim.steps(), s, s * 1e6 / (double(sim.steps()) * 8192));
+}
+
+}  // namespace bench

@@ -1,0 +1,92 @@
+// The Evrard sphere's particles (sph/setups/evrard.hpp) and the fixed softening length of the
+// two gravity modules (chapter 6).
+#include "sph/gravity/direct.hpp"
+#include "sph/gravity/tree.hpp"
+#include "sph/setups/evrard.hpp"
+
+#include <catch2/catch.hpp>
+
+#include <algorithm>
+#include <cmath>
+#include <cstdio>
+#include <vector>
+
+TEST_CASE("Evrard sphere: equal masses with the mass profile M(<r) = r^2", "[evrard]") {
+  sph::EvrardSetup setup;
+  setup.particles = 4096;
+  const sph::Particles<3> p = sph::make_evrard_sphere(setup);
+  REQUIRE(p.size() == 4096);
+  double mass = 0;
+  std::vector<double> r;
+  for (std::size_t i = 0; i < p.size(); ++i) {
+    mass += p.mass[i];
+    r.push_back(p.position[i].norm());
+    CHECK(p.velocity[i].norm() == 0.0);
+    CHECK(p.internal_energy[i] == 0.05);
+  }
+  CHECK(mass == Approx(1.0).epsilon(1e-12));
+  std::sort(r.begin(), r.end());
+  // the particle of rank k sits where M(<r) = (k + 1/2)/N, i.e. r = sqrt((k + 1/2)/N)
+  double worst = 0;
+  for (std::size_t k = 0; k < r.size(); ++k)
+    worst = std::max(worst, std::abs(r[k] - std::sqrt((k + 0.5) / 4096.0)));
+  std::printf("Evrard sphere, 4096 particles: radii within %.1e of sqrt((k + 1/2)/N)\n", worst);
+  CHECK(worst < 1e-12);
+  CHECK(r.back() < 1.0);
+  // the centre of mass near the origin (the lattice is symmetric, the disturbance random)
+  sph::Vec<3> centre = sph::Vec<3>::Zero();
+  for (std::size_t i = 0; i < p.size(); ++i) centre += p.mass[i] * p.position[i];
+  CHECK(centre.norm() < 0.01);
+  CHECK(setup.free_fall_time() == Approx(1.1107).epsilon(1e-4));
+
+  sph::EvrardSetup bad = setup;
+  bad.particles = 3;
+  CHECK_THROWS_WITH(sph::make_evrard_sphere(bad), Catch::Contains("particle count"));
+  bad = setup;
+  bad.u = std::nan("");
+  CHECK_THROWS_WITH(sph::make_evrard_sphere(bad), Catch::Contains("thermal energy"));
+  bad = setup;
+  bad.gamma = 1;
+  CHECK_THROWS_WITH(sph::make_evrard_sphere(bad), Catch::Contains("gamma"));
+}
+
+TEST_CASE("a fixed softening length: direct summation and the tree agree, h is ignored",
+          "[evrard][gravity]") {
+  sph::EvrardSetup setup;
+  setup.particles = 2048;
+  sph::Particles<3> p = sph::make_evrard_sphere(setup);
+  // smoothing lengths that vary wildly: with a fixed softening they must not matter
+  for (std::size_t i = 0; i < p.size(); ++i) p.smoothing_length[i] = 0.01 + 0.2 * (i % 7);
+  sph::Particles<3> a = p, b = p, c = p;
+  for (auto* q : {&a, &b, &c})
+    std::fill(q->acceleration.begin(), q->acceleration.end(), sph::Vec<3>::Zero());
+  sph::DirectGravity direct;
+  direct.fixed_softening = 0.02;
+  sph::TreeGravity tree;
+  tree.fixed_softening = 0.02;
+  direct.add_accelerations(a, sph::Box<3>::open());
+  tree.add_accelerations(b, sph::Box<3>::open());
+  // the same fixed softening with h set to it: the same answer to the bit
+  for (double& h : c.smoothing_length) h = 0.02;
+  sph::DirectGravity plain;
+  plain.add_accelerations(c, sph::Box<3>::open());
+  double worst = 0;
+  for (std::size_t i = 0; i < p.size(); ++i) {
+    worst =
+        std::max(worst, (b.acceleration[i] - a.acceleration[i]).norm() / a.acceleration[i].norm());
+    CHECK(a.acceleration[i] == c.acceleration[i]);
+  }
+  const double wa = direct.potential_energy(a, sph::Box<3>::open()),
+               wb = tree.potential_energy(b, sph::Box<3>::open());
+  std::printf("fixed softening 0.02: tree against direct, worst force %.1e, W %.1e\n", worst,
+              std::abs(wb / wa - 1));
+  CHECK(worst < 3e-2);
+  CHECK(std::abs(wb / wa - 1) < 1e-4);
+
+  direct.fixed_softening = -1;
+  CHECK_THROWS_WITH(direct.add_accelerations(a, sph::Box<3>::open()),
+                    Catch::Contains("fixed softening"));
+  tree.fixed_softening = std::nan("");
+  CHECK_THROWS_WITH(tree.add_accelerations(b, sph::Box<3>::open()),
+                    Catch::Contains("fixed softening"));
+}
