@@ -41,7 +41,7 @@
 ///     their softening, a particle thrown far out.
 ///
 /// What we find, in short.  The tree with quadrupoles at its default opening angle
-/// \f$ \theta = 0.3 \f$ is 17 times faster than direct summation at 8192 particles and 56
+/// \f$ \theta = 0.3 \f$ is 18 times faster than direct summation at 8192 particles and 58
 /// times at 32768, with a 99th-percentile force error of \f$ 4\times10^{-4} \f$.  Both of
 /// Selhammar's claims about the collapse reproduce as he states them: the standard viscosity's
 /// energy curves are shallower, and the modified viscosity's gradients are sharper (a shock four
@@ -1247,10 +1247,10 @@ Profiles step5_profiles(const app::Chapter& chapter, const Collapse& c) {
 ///
 /// Does the modified viscosity buy accuracy per CPU second here, in the collapse it was made
 /// for?  Each viscosity runs to t = 0.8 at 1024, 2048, 4096 and 8192 particles (more with
-/// `--largest`: 16384 is quoted below), and we measure \f$ L_1(\log_{10}\rho) \f$ and \f$ L_1(v_r) \f$ over the radial
-/// bins of Step 5 against the finite-volume reference, and the relative change of the total
-/// energy, against the whole run's wall time.  The runs at Fig 5's particle number are Step 4's,
-/// timed to t = 0.8.  The figure is `evrard_error_vs_time.png`.
+/// `--largest`: 16384 is quoted below), and we measure \f$ L_1(\log_{10}\rho) \f$ and
+/// \f$ L_1(v_r) \f$ over the radial bins of Step 5 against the finite-volume reference, and the
+/// relative change of the total energy, against the whole run's wall time.  The runs at Fig 5's
+/// particle number are Step 4's, timed to t = 0.8.  The figure is `evrard_error_vs_time.png`.
 ///
 /// What to look for: which line lies lower and further left.  The errors are dominated by the
 /// core and the shock, which SPH resolves with few particles; they fall slowly with N (the
@@ -1434,20 +1434,23 @@ Extreme step7_extreme(const Parameters& par, const Collapse& c) {
 /// many codes: on a uniform sphere the 99th percentile at 0.5 is \f$ 4\times10^{-3} \f$, above
 /// the target, and the cost barely changes -- in an SPH code the near field, where every pair
 /// within twice the smoothing length is softened and summed one by one, is most of the work
-/// (1376 interactions a particle at 0.3, 1026 at 0.5; 6 % more time).  The free fall stays
+/// (1376 interactions a particle at 0.3, 1026 at 0.5; 19 % more time).  The free fall stays
 /// within \f$ 5\times10^{-3} \f$ of the analytic collapse up to 0.9 \f$ t_\mathrm{ff} \f$.
 ///
 /// **Fig 5** (`fig5_energies.png`).  The reference: \f$ E_\mathrm{kin} \f$ peaks at 0.451
 /// (t = 0.875), \f$ E_\mathrm{th} \f$ at 1.761 (t = 1.065), W falls to -2.547 (t = 1.045); our
 /// Lagrangian code with 2000 shells agrees to 0.2 %.  At 8192 particles:
 ///
-/// | viscosity | max \f$ E_\mathrm{kin} \f$ | max \f$ E_\mathrm{th} \f$ | min W | steps | energy change at t = 3 | momentum drift |
+/// | viscosity | peak kinetic | peak thermal | deepest W | steps | energy change | momentum drift |
 /// |:--|--:|--:|--:|--:|--:|--:|
 /// | reference | 0.451 | 1.761 | -2.547 | | | |
-/// | standard | 0.344 | 1.469 | -2.215 | 1369 | \f$ 8.8\times10^{-3} \f$ | \f$ 1.4\times10^{-4} \f$ |
-/// | modified | 0.575 | 2.375 | -3.512 | 3154 | \f$ 5.6\times10^{-2} \f$ | 0.32 |
-/// | switch | 0.375 | 1.517 | -2.289 | 921 | \f$ 9.3\times10^{-3} \f$ | \f$ 1.0\times10^{-4} \f$ |
-/// | standard, fixed softening 0.01 | 0.347 | 1.487 | -2.233 | 1424 | \f$ 4.7\times10^{-5} \f$ | \f$ 2.8\times10^{-4} \f$ |
+/// | standard | 0.344 | 1.469 | -2.215 | 1369 | 8.8e-3 | 1.4e-4 |
+/// | modified | 0.575 | 2.375 | -3.512 | 3154 | 5.6e-2 | 0.32 |
+/// | switch | 0.375 | 1.517 | -2.289 | 921 | 9.3e-3 | 1.0e-4 |
+/// | standard, softening 0.01 | 0.347 | 1.487 | -2.233 | 1424 | 4.7e-5 | 2.8e-4 |
+///
+/// (energy change: \f$ |E(3) - E(0)|/|E(0)| \f$; momentum drift: \f$ |\mathbf P(3)| \f$ over
+/// \f$ \sum m|\mathbf v| \f$.)
 ///
 /// Selhammar: "the curves are more shallow" with the standard viscosity.  **Reproduced**: its
 /// largest thermal energy is 1.469 against the modified viscosity's 2.375, its deepest W -2.215
@@ -1506,11 +1509,15 @@ Extreme step7_extreme(const Parameters& par, const Collapse& c) {
 /// usual size (maximum \f$ 7\times10^{-4} \f$) and feels \f$ GM/r^2 \f$ to
 /// \f$ 3\times10^{-7} \f$.
 ///
-/// **What it costs.**  At 8192 particles the standard run to t = 3 takes 47 s (1369 steps, 4.2
-/// microseconds per particle-step, of which the tree about one); the modified viscosity's takes
-/// 196 s: its denser centre needs 3154 steps, each twice the standard's cost.  The whole chapter
-/// takes about 7 minutes on two cores, over the 3 we aim at: the neighbour search in the
-/// collapsed centre, where h spans a factor 50, is the next thing to make fast.
+/// **What it costs.**  At 8192 particles the standard run to t = 3 takes about 50 s (1369
+/// steps, 4.1-4.5 microseconds per particle-step, of which the tree about one); the modified
+/// viscosity's takes about 190 s: its denser centre needs 3154 steps, each twice the standard's
+/// cost.  The whole chapter takes about 6 minutes on two cores, over the 3 we aim at.  Gravity
+/// is not the reason: the bench (`build/bench/bench --only evrard`) times the whole step at
+/// 3.0-3.3 microseconds a particle at 22000 particles, of which the tree is 1.2-1.5.  The
+/// hydrodynamic part costs four times the shock tube's step, because in a collapse a fifth to
+/// three quarters of the particles must search for their neighbours again every step (the
+/// tube: 4 %), over smoothing lengths that span a factor 50.  That is the next thing to make fast.
 ///
 /// \section ch06_try What to try
 ///
