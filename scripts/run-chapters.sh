@@ -12,7 +12,8 @@
 # Each chapter writes FIGURES/NN-name/summary.txt (app::Chapter::summary): lines `key = value`.
 # The table shows, per chapter: the status, the PNGs written during the run, the wall time, and
 # the value of the `error` key (the error against the reference, where the chapter has one).
-# The table is also written to LOG/summary.txt and, when every chapter ran, FIGURES/summary.txt.
+# The table is also written to LOG/summary.txt; FIGURES/summary.txt holds one row per chapter
+# from the chapters' own summaries (the last full run of each).
 # The exit status is 1 if any chapter failed.
 #
 # SPH_ONLY="01 04-monaghan" (environment) runs only the chapters whose names start so.
@@ -151,9 +152,32 @@ fi
   fi
 } > "$log/summary.txt"
 cat "$log/summary.txt"
-# The table in the figures directory describes a run of every chapter, not of a selection.
-if [[ -z "${SPH_ONLY:-}" ]]; then
-  cp "$log/summary.txt" "$figures/summary.txt"
-fi
+# The table in the figures directory describes every chapter's figures as they are now: it is
+# rebuilt from each chapter's own FIGURES/NN-name/summary.txt (written by the run that drew its
+# figures), so running a selection updates its rows and never leaves the others' stale.
+{
+  printf '\n%-28s  %-16s  %7s  %11s  %s\n' "chapter" "status" "figures" "wall time" \
+    "error against the reference"
+  printf '%-28s  %-16s  %7s  %11s  %s\n' "----------------------------" "----------------" \
+    "-------" "-----------" "---------------------------"
+  for dir in "${dirs[@]}"; do
+    summary="$figures/$dir/summary.txt"
+    if [[ ! -f "$summary" ]]; then
+      printf '%-28s  %-16s  %7s  %11s  %s\n' "$dir" "not run" "-" "-" "-"
+      continue
+    fi
+    checks=$(summary_value checks "$summary")
+    verdict="ok"
+    [[ "$checks" =~ [1-9][0-9]*\ failed ]] && verdict="checks failed"
+    [[ "$(summary_value mode "$summary")" == "full" ]] || verdict="not full"
+    count=$(find "$figures/$dir" -maxdepth 1 -name '*.png' | wc -l)
+    seconds=$(summary_value run_time "$summary" | sed 's/ s$//')
+    error=$(summary_value error "$summary")
+    printf '%-28s  %-16s  %7s  %11s  %s\n' "$dir" "$verdict" "$count" \
+      "$(duration "${seconds:-0}")" "${error:--}"
+  done
+  echo
+  echo "Each row is the chapter's last run at full resolution (figures/NN-name/summary.txt)."
+} > "$figures/summary.txt"
 
 ((failures == 0))
