@@ -775,12 +775,13 @@ FreeFallResult step3_free_fall(const app::Chapter& chapter, const Parameters& pa
 /// energy and the deepest potential energy.  The figure `fig5_energies.png` draws the three
 /// viscosities against the reference.
 ///
-/// What to look for.  At 8192 particles every SPH run peaks lower and later than the
-/// reference: the centre, resolved by a few particles, cannot reach the density of the 1D
-/// calculation.  The standard viscosity heats the infalling gas before the shock.  And the total
-/// energy drifts: with the softening equal to h, the energy is not conserved (see
-/// \ref ch06_gravity "above"); the step measures the drift, and runs the standard viscosity once
-/// more with a fixed softening length, for which it is conserved.
+/// What to look for.  The standard viscosity and the switch peak lower and later than the
+/// reference: they heat and brake the infalling gas before the shock, and the centre, resolved
+/// by a few particles, cannot reach the density of the 1D calculation.  The modified viscosity
+/// peaks higher -- higher than the exact answer.  And the total energy drifts: with the
+/// softening equal to h, the energy is not conserved (see \ref ch06_gravity "above"); the step
+/// measures the drift, and runs the standard viscosity once more with a fixed softening length,
+/// for which it is conserved.
 
 struct EvrardRun {
   std::string name;
@@ -1078,9 +1079,11 @@ Collapse step4_energies(const app::Chapter& chapter, const Parameters& par,
 /// \f$ \log_{10}\rho \f$ and of \f$ v_r \f$ over the bins, weighted by their mass, against the
 /// reference at each bin's mean radius.
 ///
-/// What to look for.  Outside the shock every viscosity follows the reference; the shock is
-/// spread over several smoothing lengths, which at r = 0.14 are themselves about 0.03; the
-/// core's density is below the reference's, because h there is larger than the structure.
+/// What to look for.  Far outside the shock every viscosity follows the reference; nearer it the
+/// standard viscosity has already braked the infall.  The shock is spread over a few smoothing
+/// lengths, which at r = 0.14 are themselves about 0.03.  The core's density is below the
+/// reference's with the standard viscosity and the switch (h there is larger than the
+/// structure), and above it with the modified viscosity.
 
 struct RadialProfile {
   std::vector<double> r, v, rho, pressure;                    // every particle
