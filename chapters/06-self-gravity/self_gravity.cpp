@@ -1494,14 +1494,17 @@ Extreme step7_extreme(const Parameters& par, const Collapse& c) {
 /// \f$ L_1(\log_{10}\rho) \f$ is 0.100 (standard), 0.085 (modified), 0.081 (switch) and
 /// \f$ L_1(v_r) \f$ 0.164, 0.086, 0.116, in 3.7, 10.0 and 5.1 s.  From 1024 to 8192 particles
 /// the modified viscosity converges at order 0.43 in density, the standard one at 0.71 and the
-/// switch at 0.95; with `--largest 16384` the switch reaches
-/// \f$ L_1(\log_{10}\rho) = 0.062 \f$ in 12 s where the modified viscosity needs 24 s for
-/// 0.078 (and the standard one 11 s for 0.078).  Does the modified viscosity buy accuracy per
-/// CPU second in the collapse it was designed for?  In velocity, at these resolutions, yes: its
-/// infall is right, and it reaches the standard viscosity's 8192-particle \f$ L_1(v_r) \f$ with
-/// 1024 particles in a quarter of the time.  In density, and as the resolution grows, no; and
-/// its energy error is the largest.  The switch is the best buy of the three.
-
+/// switch at 0.95.  With `--largest 65536` (16 minutes) the series goes on to 65536 particles,
+/// and the lines part: there \f$ L_1(\log_{10}\rho) \f$ is 0.045 (standard, 91 s), 0.070
+/// (modified, 204 s) and 0.035 (switch, 118 s), and \f$ L_1(v_r) \f$ 0.067, 0.071 and 0.046.
+/// The modified viscosity's errors stall (order 0.36 from 1024 to 65536 particles, the others
+/// 0.95-1.2): what limits it is not resolution but the gas it lets through the shock.  Does the
+/// modified viscosity buy accuracy per CPU second in the collapse it was designed for?  In
+/// velocity, up to about 32768 particles, yes: its infall is right, and with 1024 particles it
+/// beats the standard viscosity's 8192-particle \f$ L_1(v_r) \f$ in a quarter of the time.  In
+/// density, and beyond that resolution, no; and its energy error is the largest.  The switch is
+/// the best buy of the three.
+///
 /// **Extreme cases.**  The standard run's centre reaches \f$ \rho = 302 \f$ (1270 times the mean
 /// density), the modified one's 1845, with h down to 0.006 and a step of \f$ 3.8\times10^{-4}
 /// \f$; the colder collapse (u = 0.005, 4096 particles) bounces at t = 1.08 with a central
@@ -1534,7 +1537,8 @@ Extreme step7_extreme(const Parameters& par, const Collapse& c) {
 ///    above the reference's (0.50 at 2048 particles): the restricted term alone does not stop
 ///    the gas either.
 ///  - `--particles 2048 --largest 65536`: Fig 5 at a quarter of the particles (faster, shallower
-///    curves) and the error series up to 65536 particles (several minutes).
+///    curves) and the error series up to 65536 particles (about ten minutes), where the
+///    modified viscosity's errors stall and the switch's keep falling.
 ///  - `--courant 0.1 --softening 0.01`: steps three times shorter.  The modified viscosity's
 ///    energy error falls from 4.0 % to 1.8 % (2048 particles): about first order in the step,
 ///    the signature of the splitting.  Its kinetic energy still peaks at 0.59: the overshoot is
