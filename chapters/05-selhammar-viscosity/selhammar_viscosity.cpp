@@ -1554,39 +1554,34 @@ long find(const std::vector<std::pair<std::string, long>>& rows, const std::stri
 }
 
 void check_claims(app::Chapter& chapter, const Parameters& par, const Findings& f) {
-  std::printf("\nChecks\n");
   // A claim about the chapter's schemes is checked only when they are the chapter's; with other
-  // options it is reported.  Conservation is checked always.
-  const bool schemes = par.default_schemes();
-  if (!schemes)
-    std::printf("  (the options change the schemes: the claims are reported, not checked)\n");
-  const auto claim = [&](bool ok, const std::string& what, bool conservation = false) {
-    std::fflush(stdout);  // (the chapter's own lines go through printf)
-    chapter.claim(ok, what, schemes || conservation);
-  };
+  // options it is reported.  Conservation is checked always (the last argument `true`).
+  std::fflush(stdout);  // (the chapter's lines go through printf, the claims through std::cout)
+  chapter.begin_claims(par.default_schemes());
   char text[256];
   const Readings& r = f.readings;
   std::snprintf(text, sizeof text,
                 "eq 13: vNR on for %.3f %% (our reading), %.1f %% (printed) inside",
                 100 * r.census_ours.second, 100 * r.census_printed.second);
-  claim(r.census_ours.second < (par.quick ? 0.1 : 0.001) && r.census_printed.second > 0.95, text);
+  chapter.claim(r.census_ours.second < (par.quick ? 0.1 : 0.001) && r.census_printed.second > 0.95,
+                text);
   std::snprintf(text, sizeof text,
                 "eq 16: weak tube E_kin %.3g mean reading, %.3g difference, %.3g standard",
                 r.kinetic_mean, r.kinetic_difference, r.kinetic_standard);
-  claim(std::abs(r.kinetic_mean / r.kinetic_standard - 1) < 0.1 &&
-            r.kinetic_difference < 0.2 * r.kinetic_standard,
-        text);
+  chapter.claim(std::abs(r.kinetic_mean / r.kinetic_standard - 1) < 0.1 &&
+                    r.kinetic_difference < 0.2 * r.kinetic_standard,
+                text);
   for (const TubeRun& run : f.tube.runs) {
     const bool pair_viscosity = run.name != "modified";
     std::snprintf(text, sizeof text, "weak tube, %s: momentum drift %.1e, energy change %.1e",
                   run.name.c_str(), run.momentum_drift, run.energy_change);
-    claim((!pair_viscosity || run.momentum_drift < 1e-12) && run.energy_change < 1e-3, text,
-          pair_viscosity);
+    chapter.claim((!pair_viscosity || run.momentum_drift < 1e-12) && run.energy_change < 1e-3, text,
+                  pair_viscosity);
   }
   std::snprintf(text, sizeof text,
                 "weak tube: modified terms act nowhere (vNR %.1f %%, collective %.2f %%)",
                 100 * f.tube.runs[1].vnr_on[1], 100 * f.tube.runs[1].collective_on[1]);
-  claim(f.tube.runs[1].vnr_on[1] < 0.01 && f.tube.runs[1].collective_on[1] < 0.01, text);
+  chapter.claim(f.tube.runs[1].vnr_on[1] < 0.01 && f.tube.runs[1].collective_on[1] < 0.01, text);
 
   const auto& runs = f.sphere.runs;  // none, standard, modified, switch
   const double e0 = runs[0].kinetic.front() + runs[0].thermal.front();
@@ -1596,49 +1591,51 @@ void check_claims(app::Chapter& chapter, const Parameters& par, const Findings& 
   std::snprintf(text, sizeof text, "sphere: E_th(0.3)/E = %.4f none, %.4f modified, %.3f standard",
                 none_03 / e0, mod_03 / e0, std_03 / e0);
   const double negligible = par.quick ? 0.05 : 0.01;
-  claim(none_03 < negligible * e0 && mod_03 < negligible * e0 && std_03 > 0.1 * e0, text);
+  chapter.claim(none_03 < negligible * e0 && mod_03 < negligible * e0 && std_03 > 0.1 * e0, text);
   std::snprintf(text, sizeof text, "sphere: peak density %.0f modified, %.0f none, %.0f standard",
                 runs[2].peak_density, runs[0].peak_density, runs[1].peak_density);
-  claim(runs[2].peak_density > (par.quick ? 0.5 : 0.8) * runs[0].peak_density &&
-            runs[1].peak_density < 0.01 * runs[0].peak_density,
-        text);
+  chapter.claim(runs[2].peak_density > (par.quick ? 0.5 : 0.8) * runs[0].peak_density &&
+                    runs[1].peak_density < 0.01 * runs[0].peak_density,
+                text);
   std::snprintf(text, sizeof text,
                 "sphere: least E_kin at t = %.3f without viscosity, %.3f in the reference",
                 runs[0].t_least_kinetic, f.sphere.reference.t_least_kinetic);
-  claim(std::abs(runs[0].t_least_kinetic - f.sphere.reference.t_least_kinetic) < 0.01, text);
+  chapter.claim(std::abs(runs[0].t_least_kinetic - f.sphere.reference.t_least_kinetic) < 0.01,
+                text);
   std::snprintf(text, sizeof text,
                 "sphere: restricted vNR on for at most %.1f %% inside, before t = 0.45",
                 100 * f.sphere.census_max);
-  claim(f.sphere.census_max < (par.quick ? 0.5 : 0.01), text);
+  chapter.claim(f.sphere.census_max < (par.quick ? 0.5 : 0.01), text);
   for (const SphereRun& run : runs) {
     const bool pair_viscosity = run.name != "modified";
     std::snprintf(text, sizeof text, "sphere, %s: momentum drift %.1e, energy change %.1e",
                   run.name.c_str(), run.momentum_drift, run.energy_change);
-    claim((!pair_viscosity || run.momentum_drift < 1e-12) && run.energy_change < 1e-3, text,
-          pair_viscosity);
+    chapter.claim((!pair_viscosity || run.momentum_drift < 1e-12) && run.energy_change < 1e-3, text,
+                  pair_viscosity);
   }
   const double boost_gap =
       std::abs(f.sphere.boost_thermal_fine / f.sphere.boost_thermal_moving - 1);
   std::snprintf(text, sizeof text,
                 "boost: E_th at rest with short steps within %.1f %% of the moving frame's",
                 100 * boost_gap);
-  claim(boost_gap < 0.1, text);
+  chapter.claim(boost_gap < 0.1, text);
   const double mg_std = find(f.strong.mg_l1_rho, "standard"),
                mg_mod = find(f.strong.mg_l1_rho, "modified");
   std::snprintf(text, sizeof text, "3D tube: L1(rho) %.2e modified, %.2e standard", mg_mod, mg_std);
-  claim(mg_mod > mg_std, text);
+  chapter.claim(mg_mod > mg_std, text);
   const auto& inv = f.strong.inversions;
   std::snprintf(text, sizeof text,
                 "streams: inversions %ld standard, %ld modified, %ld without viscosity",
                 find(inv, "standard"), find(inv, "modified"), find(inv, "no viscosity"));
-  claim(find(inv, "standard") == 0 && find(inv, "modified") == 0 && find(inv, "no viscosity") > 0,
-        text);
+  chapter.claim(
+      find(inv, "standard") == 0 && find(inv, "modified") == 0 && find(inv, "no viscosity") > 0,
+      text);
   const double sod_std = find(f.strong.sod_l1_rho, "standard"),
                sod_mod = find(f.strong.sod_l1_rho, "modified");
   std::snprintf(text, sizeof text,
                 "Sod: L1(rho) %.2e modified, %.2e standard; standard of order %.2f", sod_mod,
                 sod_std, f.cost.order_standard_sod);
-  claim(sod_mod > 3 * sod_std && f.cost.order_standard_sod > 0.6, text);
+  chapter.claim(sod_mod > 3 * sod_std && f.cost.order_standard_sod > 0.6, text);
 
   std::snprintf(text, sizeof text,
                 "weak tube L1(v_z) in the window: standard %.2e, modified %.2e, switch %.2e",

@@ -169,11 +169,17 @@ class Chapter {
   /// finish() returns non-zero.  Returns \p ok.
   bool check(bool ok, const std::string& message);
 
-  /// A claim of the chapter, printed on one line.  When \p checked is true it is a check
-  /// ("[ok]" or "[FAILED]", recorded as check() records it); when false -- the options have
-  /// changed the schemes the claim is about -- it is only reported, "[as claimed]" or
-  /// "[not as claimed]", and cannot fail the run.  Returns \p ok.
-  bool claim(bool ok, const std::string& what, bool checked = true);
+  /// Starts the chapter's claims: prints the heading "Checks", and, when the options have
+  /// changed the schemes the claims are about (\p own_schemes false), says that those claims
+  /// are reported, not checked.
+  void begin_claims(bool own_schemes);
+
+  /// A claim of the chapter, printed on one line.  A check ("[ok]" or "[FAILED]", recorded as
+  /// check() records it) when the run uses the chapter's own schemes (begin_claims) or when
+  /// \p always -- a claim that must hold whatever the options, such as conservation; otherwise
+  /// only reported, "[as claimed]" or "[not as claimed]", and it cannot fail the run.
+  /// Returns \p ok.
+  bool claim(bool ok, const std::string& what, bool always = false);
 
   /// Number of failed checks so far.
   [[nodiscard]] int failed_checks() const;
@@ -199,6 +205,7 @@ class Chapter {
     std::string message;
   };
 
+  bool own_schemes_ = true;  // begin_claims: whether claims about the schemes are checked
   std::string name_;
   std::string title_;
   int argc_;
