@@ -983,23 +983,31 @@ void energy_figure(const app::Chapter& chapter, const std::vector<EvrardRun>& ru
       .xlabel("t  [code units]")
       .ylabel("[E_{tot}(t) - E_{tot}(0)] / |E_{tot}(0)|")
       .xlim(0, t_end);
+  // the change of the total energy relative to its start, and the range of all four curves
+  double lowest = 0, highest = 0;
+  const auto change = [&](const EvrardRun& run) {
+    std::vector<double> e(run.t.size());
+    for (std::size_t i = 0; i < e.size(); ++i) {
+      e[i] = (total_at(run, i) - total_at(run, 0)) / std::abs(total_at(run, 0));
+      lowest = std::min(lowest, e[i]);
+      highest = std::max(highest, e[i]);
+    }
+    return e;
+  };
   const plot::Color colors[] = {plot::blue, plot::red, plot::green};
   for (std::size_t k = 0; k < runs.size(); ++k) {
-    std::vector<double> e(runs[k].t.size());
-    for (std::size_t i = 0; i < e.size(); ++i)
-      e[i] = (total_at(runs[k], i) - total_at(runs[k], 0)) / std::abs(total_at(runs[k], 0));
-    ax.line(runs[k].t, e,
+    ax.line(runs[k].t, change(runs[k]),
             {.label = runs[k].name + ", softening h", .color = colors[k], .width = 2});
   }
-  std::vector<double> e(fixed.t.size());
-  for (std::size_t i = 0; i < e.size(); ++i)
-    e[i] = (total_at(fixed, i) - total_at(fixed, 0)) / std::abs(total_at(fixed, 0));
   char label[96];
   std::snprintf(label, sizeof label, "standard, fixed softening %.3g", fixed_softening);
-  ax.line(fixed.t, e,
+  ax.line(fixed.t, change(fixed),
           {.label = label, .color = plot::black, .style = plot::Dash::dashed, .width = 2});
   ax.hline(0, {.color = plot::Color{0.6, 0.6, 0.6}, .style = plot::Dash::dotted});
-  ax.legend(plot::Corner::lower_left);
+  const double span = std::max(highest - lowest, 1e-6);
+  // (room below the curves for the legend, which would otherwise hide the modified run's dip)
+  ax.ylim(lowest - 0.35 * span, highest + 0.05 * span);
+  ax.legend(plot::Corner::lower_right);
   figure.save_png(chapter.figure_path("fig5_energies.png").string());
 }
 
