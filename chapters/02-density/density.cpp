@@ -41,6 +41,7 @@
 #include "sph/initial_conditions.hpp"
 #include "sph/neighbours.hpp"
 #include "sph/relax.hpp"
+#include "sph/setups/watkins_static.hpp"
 
 #include <omp.h>
 
@@ -80,31 +81,19 @@ struct Setup {
 /// So their h is the same as ours and Selhammar's -- half the support radius -- and
 /// \f$ N_{\rm kernel} \f$ is the *expected* number of particles within \f$ 2h \f$.  For 5000
 /// particles of mass \f$ 1/5000 \f$ in the unit box and \f$ N_{\rm kernel} = 60 \f$ this gives
-/// \f$ h = 0.0710 \f$, a kernel radius of 0.142, 2.4 mean spacings.  The function below is
-/// eq A6 in D dimensions (eq A7 in 2D), \f$ h = \frac12 (N m / V_D \rho)^{1/D} \f$ with
-/// \f$ V_D \f$ the volume of the unit ball.
+/// \f$ h = 0.0710 \f$, a kernel radius of 0.142, 2.4 mean spacings.
+/// `sph::setups::watkins_smoothing_length` (lib/sph/setups/watkins_static.hpp) is eq A6 in D
+/// dimensions (eq A7 in 2D), \f$ h = \frac12 (N m / V_D \rho)^{1/D} \f$ with \f$ V_D \f$ the
+/// volume of the unit ball.
 
-template <int D>
-double watkins_smoothing_length(double mass, double neighbours, double density) {
-  return 0.5 * sph::root<D>(neighbours * mass / (sph::unit_ball_volume<D>() * density));
-}
+using sph::setups::watkins_smoothing_length;
 
 /// Every set in this chapter fills the periodic unit box with equal masses that make the mean
-/// density one, and starts with Watkins' constant h.
+/// density one, and starts with Watkins' constant h (`sph::setups::unit_box_particles`, which
+/// chapter 7 uses for the same sets).
 
-template <int D>
-sph::Box<D> unit_box() {
-  return sph::Box<D>::periodic_box(Vec<D>::Zero(), Vec<D>::Ones());
-}
-
-template <int D>
-sph::Particles<D> unit_box_particles(const std::vector<Vec<D>>& positions, double neighbours) {
-  const double mass = 1.0 / static_cast<double>(positions.size());
-  sph::Particles<D> p = sph::make_particles<D>(positions, mass);
-  std::fill(p.smoothing_length.begin(), p.smoothing_length.end(),
-            watkins_smoothing_length<D>(mass, neighbours, 1.0));
-  return p;
-}
+using sph::setups::unit_box;
+using sph::setups::unit_box_particles;
 
 /// The density step itself -- neighbour search with the fixed h, then the sum -- returning its
 /// wall-clock time.
