@@ -30,7 +30,9 @@
 /// and keeps the force loop a SIMD loop: a scene whose terms are all of this kind compiles to
 /// the same vectorised loop as a scene with the pressure force alone.  A term whose force is
 /// not along \f$ \mathbf r_{ij} \f$ (Watkins' Navier-Stokes viscosity) returns a
-/// PairAcceleration instead, and must make it antisymmetric itself.
+/// PairAcceleration instead; momentum is then conserved only if the term makes it
+/// antisymmetric itself, which Watkins' differenced sums are not (chapter 7 measures the net
+/// force they leave).
 ///
 /// **Who is heated.**  By default the work of a bracket term is shared equally by the pair, the
 /// \f$ \tfrac12 B_{ij} \f$ above.  A term may say otherwise with `heating(pair, view)`, the
