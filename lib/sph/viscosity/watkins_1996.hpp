@@ -137,6 +137,8 @@ class WatkinsViscosity {
   std::vector<double> divergence;           ///< \f$ (\nabla\cdot\mathbf v)_i \f$
   std::vector<Vec<D>> local_acceleration;   ///< the per-particle terms of eq 2, over rho
   std::vector<double> dissipation;          ///< \f$ \Phi_i/\rho_i \f$
+  std::vector<double> volume;               ///< \f$ m_i/\rho_i \f$ (after the density pass)
+  std::vector<double> inverse_density;      ///< \f$ 1/\rho_i \f$
 
   void resize(std::size_t n) {
     velocity_gradient.assign(n, Mat::Zero());
@@ -144,6 +146,14 @@ class WatkinsViscosity {
     divergence.assign(n, 0.0);
     local_acceleration.assign(n, Vec<D>::Zero());
     dissipation.assign(n, 0.0);
+    volume.assign(n, 0.0);
+    inverse_density.assign(n, 0.0);
+  }
+
+  // --- after each particle's density: its volume, so that no pair divides ------------------
+  void after_density(std::size_t i, const ParticleView<D>& in) {
+    inverse_density[i] = 1.0 / in.rho[i];
+    volume[i] = in.m[i] * inverse_density[i];
   }
 
   template <int Dim>
@@ -152,8 +162,7 @@ class WatkinsViscosity {
     double grad_shear[D] = {}, grad_bulk[D] = {};
   };
   void gradient_pair(GradientSum<D>& sum, const Pair<D>& p, const ParticleView<D>& in) const {
-    const double volume = in.m[p.j] / in.rho[p.j];
-    const double g = volume * p.gradient_factor;  // V_j grad_i W_ij = g r_ij
+    const double g = volume[p.j] * p.gradient_factor;  // V_j grad_i W_ij = g r_ij
     for (int a = 0; a < D; ++a)
       for (int b = 0; b < D; ++b) sum.J[a][b] -= g * p.v_ij[a] * p.r_ij[b];  // (v_j - v_i) x grad
     if constexpr (Mu::varies) {
@@ -198,7 +207,7 @@ class WatkinsViscosity {
   // --- the force pass: the second derivatives -------------------------------------------------
   PairAcceleration pair_acceleration(const Pair<D>& p, const ParticleView<D>& in) const {
     const std::size_t i = p.i, j = p.j;
-    const double g = in.m[j] / (in.rho[j] * in.rho[i]) * p.gradient_factor;  // V_j grad W / rho_i
+    const double g = volume[j] * inverse_density[i] * p.gradient_factor;  // V_j grad W / rho_i
     const double shear_i = mu.shear_at(i, in);
     // -mu_s (w_i - w_j) x grad W
     double cc[3] = {0, 0, 0};
