@@ -288,6 +288,18 @@ bool Chapter::claim(bool ok, const std::string& what, bool always) {
   return check(ok, what);
 }
 
+bool Chapter::not_reproduced(bool holds, const std::string& what) {
+  if (!own_schemes_) {
+    *out_ << "  [" << (holds ? "reproduced" : "not reproduced") << "] " << what << "\n"
+          << std::flush;
+    return holds;
+  }
+  *out_ << "  [" << (holds ? "FAILED: reproduces" : "not reproduced") << "] " << what << "\n"
+        << std::flush;
+  check(!holds, what + " (the chapter found it not to reproduce; it now does)");
+  return holds;
+}
+
 int Chapter::failed_checks() const {
   return static_cast<int>(
       std::count_if(checks_.begin(), checks_.end(), [](const Check& c) { return !c.ok; }));

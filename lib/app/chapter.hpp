@@ -181,6 +181,13 @@ class Chapter {
   /// Returns \p ok.
   bool claim(bool ok, const std::string& what, bool always = false);
 
+  /// A claim of a paper that the chapter found *not* to reproduce, with \p holds whether it
+  /// holds in this run.  With the chapter's own schemes it is a check of that finding:
+  /// "[not reproduced]" when the claim fails as the text says, and "[FAILED: reproduces]"
+  /// (a failed check) when it holds -- the text must then change.  With other options it is
+  /// only reported, "[not reproduced]" or "[reproduced]".  Returns \p holds.
+  bool not_reproduced(bool holds, const std::string& what);
+
   /// Number of failed checks so far.
   [[nodiscard]] int failed_checks() const;
 

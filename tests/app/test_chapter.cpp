@@ -282,3 +282,25 @@ TEST_CASE("a claim is a check only when it is about the chapter's own schemes", 
   CHECK(chapter.failed_checks() == 1);
   CHECK(chapter.finish() == 1);
 }
+
+TEST_CASE("a claim found not to reproduce is checked as such, and fails if it reproduces",
+          "[app]") {
+  const fs::path dir = scratch("refuted");
+  CommandLine line({"ch99", "--output", dir.string()});
+  app::Chapter chapter("99-test", "Chapter 99: a test", line.argc(), line.argv());
+  std::ostringstream out, err;
+  chapter.set_streams(out, err);
+  REQUIRE(chapter.parse() == -1);
+  chapter.begin_claims(true);
+  CHECK_FALSE(chapter.not_reproduced(false, "a paper's claim"));
+  CHECK(out.str().find("  [not reproduced] a paper's claim\n") != std::string::npos);
+  CHECK(chapter.failed_checks() == 0);
+  CHECK(chapter.not_reproduced(true, "now holds"));
+  CHECK(out.str().find("  [FAILED: reproduces] now holds\n") != std::string::npos);
+  CHECK(chapter.failed_checks() == 1);
+  chapter.begin_claims(false);  // other options: reported only
+  CHECK(chapter.not_reproduced(true, "reported"));
+  CHECK(out.str().find("  [reproduced] reported\n") != std::string::npos);
+  CHECK(chapter.failed_checks() == 1);
+  CHECK(chapter.finish() == 1);
+}

@@ -21,9 +21,11 @@
 /// separately (with different coefficients); \f$ \nabla^2\mathbf v \f$ stands in for
 /// \f$ -\nabla\times\nabla\times\mathbf v \f$ only where \f$ \nabla\cdot\mathbf v = 0 \f$.
 /// Its first-order term vanishes only on average: on a disordered set the odd moment
-/// \f$ \sum_j V_j\, \mathbf r_{ij} (\mathbf r_{ij}\cdot\nabla W)/r^2 \f$ is not zero and multiplies
-/// the velocity *gradient*, divided by nothing small -- the noise Figs 2d and 3d of Watkins et
-/// al. show.
+/// \f$ \sum_j V_j\, \mathbf r_{ij} (\mathbf r_{ij}\cdot\nabla W)/r^2 \f$ is not zero, of order
+/// \f$ \delta/h \f$ for a disorder \f$ \delta \f$, and it multiplies the velocity *gradient*: an
+/// error \f$ \delta\,|\nabla\mathbf v|/h \f$, which relative to a field of wavenumber k grows like
+/// \f$ \delta/(kh) \f$ -- largest where the field is steepest, and larger as h shrinks.  That is
+/// the noise of Figs 2d and 3d of Watkins et al.
 
 #include "sph/derivatives/particle_set.hpp"
 
