@@ -54,17 +54,18 @@
 ///  9. the Navier-Stokes viscosity as a term of the step, on a static field.
 ///
 /// What we find, in short.  Watkins' claims reproduce in 3D, the dimension of their figures,
-/// with one exception: on the settled set every method is accurate and the two-pass methods
+/// with two exceptions.  On the settled set every method is accurate and the two-pass methods
 /// smooth the peak (amplitude 0.94 against Brookshaw's 0.98); with a noisy velocity Brookshaw's
-/// error is 13 times Watkins' while Flebbe's is Watkins' own; on the random set Watkins' error
-/// (0.24 of the amplitude) is a third of Brookshaw's and a fifth of Flebbe's.  The exception:
-/// the noise of Watkins' curl curl on the random set is less than the density's, but by a
-/// factor 0.63, not "considerably", and in 2D it is twice the density's.  Watkins' one change,
-/// \f$ m_j/\rho_j \f$ for \f$ m_j/\rho_i \f$, halves the error on the random set and does nothing
-/// on a glass; Flebbe's symmetric second pass halves it again the other way.  On a glass and for
-/// a field without divergence, Brookshaw's single pass is both the most accurate and the
-/// cheapest -- until the glass's noise floor stops it; Watkins meets it at 20000 particles and
-/// passes it at 40000.
+/// error is 13 times Watkins', and on the random set Watkins' error (0.24 of the amplitude) is a
+/// third of Brookshaw's and a fifth of Flebbe's.  The exceptions: with a noisy *velocity*
+/// Watkins and Flebbe are indistinguishable (1 %), so the paper's "considerably more accurate
+/// than Flebbe with noise" holds only for noisy *positions*; and on the random set the noise of
+/// Watkins' curl curl is less than the density's by a factor 0.63, not "considerably" -- in 2D
+/// it is twice the density's.  Watkins' one change, \f$ m_j/\rho_j \f$ for \f$ m_j/\rho_i \f$,
+/// halves the error on the random set and does nothing on a glass; Flebbe's second pass doubles
+/// it again.  On a glass and for a field without divergence, Brookshaw's single pass is both the
+/// most accurate and the cheapest up to 20000 particles; then the glass's noise turns its error
+/// up, and Watkins passes it.
 /// Details in \ref ch07_findings "the findings".
 
 #include "app/chapter.hpp"
