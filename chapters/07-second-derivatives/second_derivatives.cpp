@@ -1337,7 +1337,7 @@ void check_claims(app::Chapter& chapter, bool own_schemes, const Results& r) {
 ///    agree to 1 %.  Flebbe's second pass doubles the error again (1.138): it is not a
 ///    difference and carries the zeroth-order error of the pressure force.  The disorder figure
 ///    shows the curves parting once \f$ \sigma_\rho/\bar\rho \f$ exceeds 1 %.
-///  - **Watkins' method leans on \f$ \rho_j \f$.**  With the self term in the random set's
+///  - <b>Watkins' method leans on \f$ \rho_j \f$.</b>  With the self term in the random set's
 ///    densities (18 % too high) its amplitude drops from 1.02 to 0.71: the volumes
 ///    \f$ m_j/\rho_j \f$ must be fair estimates, so a random set must leave the self term out.
 ///  - **A compressive field.**  For \f$ v_x = \sin 2\pi x \f$ Watkins and Flebbe give the gradient of
