@@ -177,3 +177,37 @@ TEST_CASE(
     if (rule.mode == sph::SmoothingLengthRule::Mode::fixed) CHECK(search.reuses() > 0);
   }
 }
+
+TEST_CASE("a collapsing cloud whose h spans a factor 30 keeps its list equal to brute force",
+          "[neighbours]") {
+  // The situation of the Evrard collapse: a ball with rho ~ 1/r^2 (h from 40 neighbours spans
+  // a factor ~40 from the centre to the edge), falling in non-homologously (the inner parts
+  // faster), in an open box.  After every update the list must equal brute force.
+  std::mt19937_64 rng(5);
+  std::uniform_real_distribution<double> unit(0.0, 1.0);
+  sph::Particles<3> p;
+  while (p.size() < 3000) {
+    const sph::Vec<3> dir(unit(rng) - 0.5, unit(rng) - 0.5, unit(rng) - 0.5);
+    if (dir.norm() > 0.5 || dir.norm() < 1e-3) continue;
+    const double r = unit(rng);  // uniform in r: rho ~ 1/r^2
+    p.add(r * dir.normalized(), sph::Vec<3>::Zero(), 1.0);
+  }
+  for (auto& h : p.smoothing_length) h = 0.05;
+  const auto rule = sph::SmoothingLengthRule::neighbour_number(40, 4);
+  sph::NeighbourSearch<3> search;
+  for (int step = 0; step < 25; ++step) {
+    for (auto& x : p.position) {
+      const double r = x.norm();
+      x *= 1.0 - 0.002 / std::sqrt(std::max(r, 0.05));  // free-fall-like: faster inside
+    }
+    search.update(p, sph::Box<3>::open(), rule);
+    REQUIRE(listed(search.list(), p.size()) == brute_force(p, sph::Box<3>::open()));
+  }
+  const auto [h_min, h_max] =
+      std::minmax_element(p.smoothing_length.begin(), p.smoothing_length.end());
+  INFO("h from " << *h_min << " to " << *h_max << "; particle searches "
+                 << search.particle_searches());
+  CHECK(*h_max / *h_min > 10);
+  // Candidates are kept: fewer than half the particles are searched again per update.
+  CHECK(search.particle_searches() < static_cast<long>(p.size()) * (1 + 24 / 2));
+}
