@@ -244,23 +244,13 @@ struct StaticSet {
   }
 };
 
-/// The shear field \f$ v_x = \sin 2\pi y \f$ plus, if `noise` > 0, an independent uniform
-/// random number in \f$ [-\epsilon, \epsilon] \f$ on every component of every velocity.
+/// The fields (lib/sph/setups/watkins_static.hpp): the shear field of eq 12,
+/// \f$ v_x = \sin 2\pi y \f$, with or without noise, and the compressive \f$ v_x = \sin 2\pi x \f$.
 template <int D>
 std::vector<Vec<D>> shear_field(const sph::Particles<D>& p, double noise = 0, int seed = 11) {
-  std::vector<Vec<D>> v(p.size(), Vec<D>::Zero());
-  for (std::size_t i = 0; i < p.size(); ++i) v[i][0] = std::sin(two_pi * p.position[i][1]);
-  if (noise > 0) sph::disturb(v, noise, static_cast<std::uint64_t>(seed));
-  return v;
+  return sph::setups::watkins_shear_field<D>(p, noise, static_cast<std::uint64_t>(seed));
 }
-/// The compression field \f$ v_x = \sin 2\pi x \f$: \f$ \nabla(\nabla\cdot\mathbf v) =
-/// (-4\pi^2\sin 2\pi x, 0, 0) \f$ and \f$ \nabla\times\nabla\times\mathbf v = 0 \f$.
-template <int D>
-std::vector<Vec<D>> compression_field(const sph::Particles<D>& p) {
-  std::vector<Vec<D>> v(p.size(), Vec<D>::Zero());
-  for (std::size_t i = 0; i < p.size(); ++i) v[i][0] = std::sin(two_pi * p.position[i][0]);
-  return v;
-}
+using sph::setups::compression_field;
 
 /// The error of one method on one set: rms and largest \f$ |\mathbf a - \mathbf a_\mathrm{exact}|
 /// \f$ over the particles, both over \f$ 4\pi^2 \f$; the fitted amplitude A of the x-component, \f$

@@ -54,16 +54,9 @@ sph::Particles<D> lattice(int side, double neighbours) {
 // v_x = sin(2 pi x) (compression: grad div v = (-4 pi^2 sin 2 pi x, 0, 0), curl curl v = 0).
 template <int D>
 std::vector<Vec<D>> shear_field(const sph::Particles<D>& p) {
-  std::vector<Vec<D>> v(p.size(), Vec<D>::Zero());
-  for (std::size_t i = 0; i < p.size(); ++i) v[i][0] = std::sin(two_pi * p.position[i][1]);
-  return v;
+  return sph::setups::watkins_shear_field<D>(p);
 }
-template <int D>
-std::vector<Vec<D>> compression_field(const sph::Particles<D>& p) {
-  std::vector<Vec<D>> v(p.size(), Vec<D>::Zero());
-  for (std::size_t i = 0; i < p.size(); ++i) v[i][0] = std::sin(two_pi * p.position[i][0]);
-  return v;
-}
+using sph::setups::compression_field;
 
 // The largest |computed - exact| over all particles and components, relative to 4 pi^2.
 template <int D, class Exact>

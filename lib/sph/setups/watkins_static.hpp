@@ -23,6 +23,7 @@
 #include <algorithm>
 #include <cmath>
 #include <cstdint>
+#include <numbers>
 #include <vector>
 
 namespace sph::setups {
@@ -73,6 +74,33 @@ Particles<D> watkins_settled_set(std::size_t n, double neighbours, std::uint64_t
   const RelaxReport r = relax_to_uniform_density(p, unit_box<D>(), options);
   if (report) *report = r;
   return p;
+}
+
+/// The velocity field of the static tests (eq 12): \f$ v_x = \sin 2\pi y \f$, the others zero,
+/// so that \f$ \nabla\times\nabla\times\mathbf v = (4\pi^2\sin 2\pi y, 0, 0) \f$ and
+/// \f$ \nabla(\nabla\cdot\mathbf v) = 0 \f$ (eqs 13-14).  With `noise` > 0, an independent
+/// uniform random number in [-noise, noise] is added to every component of every velocity (the
+/// noisy field of Fig 2, whose amplitude the paper does not give).
+template <int D>
+std::vector<Vec<D>> watkins_shear_field(const Particles<D>& p, double noise = 0,
+                                        std::uint64_t seed = 11) {
+  static_assert(D >= 2, "watkins_shear_field: v_x depends on y");
+  require(std::isfinite(noise) && noise >= 0, "watkins_shear_field: the noise must be >= 0");
+  std::vector<Vec<D>> v(p.size(), Vec<D>::Zero());
+  for (std::size_t i = 0; i < p.size(); ++i)
+    v[i][0] = std::sin(2 * std::numbers::pi * p.position[i][1]);
+  if (noise > 0) disturb(v, noise, seed);
+  return v;
+}
+
+/// A compressive field beside it: \f$ v_x = \sin 2\pi x \f$, with
+/// \f$ \nabla(\nabla\cdot\mathbf v) = (-4\pi^2\sin 2\pi x, 0, 0) \f$ and no curl.
+template <int D>
+std::vector<Vec<D>> compression_field(const Particles<D>& p) {
+  std::vector<Vec<D>> v(p.size(), Vec<D>::Zero());
+  for (std::size_t i = 0; i < p.size(); ++i)
+    v[i][0] = std::sin(2 * std::numbers::pi * p.position[i][0]);
+  return v;
 }
 
 }  // namespace sph::setups
