@@ -42,6 +42,7 @@ file(WRITE "${WORK}/Doxyfile.run"
   "@INCLUDE = \"${DOXYFILE}\"\n"
   "OUTPUT_DIRECTORY = \"${WORK}\"\n"
   "INPUT += \"${WORK}/pages\"\n"
+  "FILE_PATTERNS += *.dox\n"
   # The pages at the root of the file tree: no empty "pages" folder beside app, plot and sph.
   "STRIP_FROM_PATH += \"${WORK}/pages\"\n"
   "IMAGE_PATH = \"${WORK}/images\"\n"
@@ -99,6 +100,90 @@ if(STRICT)
   if(NOT raw STREQUAL "")
     message(FATAL_ERROR "docs: raw markup in the pages (use <b>...</b> for a bold that starts "
                         "with a parenthesis or holds a formula or code):\n${raw}")
+  endif()
+endif()
+
+# ---- 2b'. Every class and struct has a description (with EXTRACT_ALL a class without one still
+# gets a page, an empty one, and no warning): a second Doxygen run without EXTRACT_ALL, without
+# output and without the generated "Used in the chapters" lines (which would count as a
+# description) lists the undocumented compounds.
+if(STRICT)
+  file(WRITE "${WORK}/Doxyfile.compounds"
+    "@INCLUDE = \"${WORK}/Doxyfile.run\"\n"
+    "EXTRACT_ALL = NO\n"
+    "EXCLUDE_PATTERNS += */used_in.dox\n"
+    "GENERATE_HTML = NO\n"
+    "OUTPUT_DIRECTORY = \"${WORK}/compounds\"\n"
+    "WARN_LOGFILE = \"${WORK}/compounds.log\"\n")
+  file(REMOVE "${WORK}/compounds.log")
+  execute_process(COMMAND "${DOXYGEN}" "${WORK}/Doxyfile.compounds"
+                  WORKING_DIRECTORY "${WORK}" OUTPUT_QUIET ERROR_QUIET)
+  file(STRINGS "${WORK}/compounds.log" undocumented REGEX "Compound .* is not documented")
+  if(undocumented)
+    list(JOIN undocumented "\n" shown)
+    message(FATAL_ERROR "docs: classes without a description (their pages would be empty):\n"
+                        "${shown}")
+  endif()
+endif()
+
+# ---- 2c. Every figure of a chapter page links to its full-size file: the page shows it at the
+# page's width, a click shows every pixel.
+file(GLOB chapter_pages "${WORK}/html/ch[0-9][0-9].html")
+foreach(page IN LISTS chapter_pages)
+  file(READ "${page}" html)
+  string(REGEX REPLACE "<div class=\"image\">\n<img src=\"([^\"]+)\" alt=\"\"/>"
+         "<div class=\"image\">\n<a href=\"\\1\" title=\"Full size\"><img src=\"\\1\" alt=\"\"/></a>"
+         linked "${html}")
+  if(NOT linked STREQUAL html)
+    file(WRITE "${page}" "${linked}")
+  endif()
+endforeach()
+
+# ---- 2d. Links that lead nowhere: in the course's own pages, every link to an anchor of the
+# same page or to a local page (and its anchor) must find it.
+if(STRICT)
+  file(GLOB pages "${WORK}/html/ch[0-9][0-9].html" "${WORK}/html/papers.html"
+                  "${WORK}/html/design.html" "${WORK}/html/index.html"
+                  "${WORK}/html/chapters.html")
+  set(broken "")
+  foreach(page IN LISTS pages)
+    get_filename_component(name "${page}" NAME)
+    file(READ "${page}" html)
+    string(REGEX MATCHALL "href=\"[^\":]*\"" links "${html}")
+    list(REMOVE_DUPLICATES links)
+    foreach(link IN LISTS links)
+      string(REGEX REPLACE "^href=\"([^\"]*)\"$" "\\1" target "${link}")
+      string(FIND "${target}" "#" hash)
+      if(hash EQUAL -1)
+        set(file_part "${target}")
+        set(anchor "")
+      else()
+        string(SUBSTRING "${target}" 0 ${hash} file_part)
+        string(SUBSTRING "${target}" ${hash} -1 anchor)
+      endif()
+      if(file_part STREQUAL "")
+        set(target_html "${html}")
+      elseif(EXISTS "${WORK}/html/${file_part}")
+        if(anchor STREQUAL "")
+          continue()
+        endif()
+        file(READ "${WORK}/html/${file_part}" target_html)
+      else()
+        string(APPEND broken "  ${name}: ${target} (no such file)\n")
+        continue()
+      endif()
+      if(NOT anchor STREQUAL "")
+        string(SUBSTRING "${anchor}" 1 -1 id)
+        string(FIND "${target_html}" "id=\"${id}\"" at_id)
+        string(FIND "${target_html}" "name=\"${id}\"" at_name)
+        if(at_id EQUAL -1 AND at_name EQUAL -1)
+          string(APPEND broken "  ${name}: ${target} (no such anchor)\n")
+        endif()
+      endif()
+    endforeach()
+  endforeach()
+  if(NOT broken STREQUAL "")
+    message(FATAL_ERROR "docs: links that lead nowhere:\n${broken}")
   endif()
 endif()
 

@@ -201,6 +201,8 @@ struct Chapter {
   std::vector<std::string> builds_on;  ///< page names
   std::string gallery_image;           ///< the first figure shown on the page (copied name)
   fs::path gallery_source;             ///< ... and where it came from
+  std::map<std::string, int> figures;  ///< figure file -> its number k in "Fig. N.k"
+  std::set<std::string> uses;          ///< library headers the chapter uses ("sph/kernel.hpp")
 };
 
 struct Settings {
@@ -250,12 +252,69 @@ std::string copy_figure(const Settings& settings, Chapter& chapter, const fs::pa
   return name;
 }
 
+/// The chapter's number N in "Fig. N.k": page "ch04" -> "4".
+std::string chapter_number(const Chapter& chapter) {
+  std::size_t i = 2;
+  while (i + 1 < chapter.page.size() && chapter.page[i] == '0') ++i;
+  return chapter.page.substr(i);
+}
+
+/// The anchor of figure \p k of a chapter page: "ch04_figure_3".
+std::string figure_anchor(const Chapter& chapter, int k) {
+  return chapter.page + "_figure_" + std::to_string(k);
+}
+
+/// The regular expression of an "\image html file "caption"" command.
+const std::regex& image_command() {
+  static const std::regex pattern(
+      R"re(\\image(\{[^}]*\})?[ \t]+html[ \t]+("[^"]+"|[^ \t"]+)([ \t]+"([^"]*)")?)re");
+  return pattern;
+}
+
+/// Numbers the figures of a chapter in the order results.md shows them: Fig. N.1, N.2, ...
+void number_figures(Chapter& chapter) {
+  chapter.figures.clear();
+  const fs::path results = chapter.program.parent_path() / "results.md";
+  if (!fs::is_regular_file(results)) return;
+  const std::string text = read_file(results);
+  for (auto it = std::sregex_iterator(text.begin(), text.end(), image_command());
+       it != std::sregex_iterator(); ++it) {
+    std::string file = (*it)[2].str();
+    if (file.front() == '"') file = file.substr(1, file.size() - 2);
+    if (!chapter.figures.count(file)) {
+      const int k = static_cast<int>(chapter.figures.size()) + 1;
+      chapter.figures[file] = k;
+    }
+  }
+}
+
+/// Replaces each "\figref{file.png}" in \p line by a link "Fig. N.k" to that figure of the
+/// chapter (numbered by number_figures); an unknown file is a warning.
+std::string cite_figures(const Chapter& chapter, const std::string& line,
+                         const std::string& where) {
+  static const std::regex figref(R"re(\\figref\{([^}]+)\})re");
+  std::string out;
+  std::smatch match;
+  std::string rest = line;
+  while (std::regex_search(rest, match, figref)) {
+    out += match.prefix().str();
+    const auto found = chapter.figures.find(match[1].str());
+    if (found == chapter.figures.end()) {
+      warn(where + ": \\figref{" + match[1].str() + "}: results.md shows no such figure");
+      out += match[1].str();
+    } else {
+      out += "\\ref " + figure_anchor(chapter, found->second) + " \"Fig. " +
+             chapter_number(chapter) + "." + std::to_string(found->second) + "\"";
+    }
+    rest = match.suffix().str();
+  }
+  return out + rest;
+}
+
 /// Rewrites the figure references of results.md: "\image html fig.png ..." and Markdown
 /// "![caption](fig.png)" point at the copies; a figure not made yet becomes a note.
 std::vector<std::string> resolve_figures(const Settings& settings, Chapter& chapter,
                                          const std::string& text, bool chapter_has_run) {
-  static const std::regex image_command(
-      R"re(\\image(\{[^}]*\})?[ \t]+html[ \t]+("[^"]+"|[^ \t"]+)([ \t]+"([^"]*)")?)re");
   static const std::regex markdown_image(R"re(!\[([^\]]*)\]\(([^)\s]+)\))re");
   auto missing = [&](const std::string& file, const std::string& caption) {
     if (chapter_has_run) {
@@ -271,7 +330,7 @@ std::vector<std::string> resolve_figures(const Settings& settings, Chapter& chap
     std::string out;
     std::smatch match;
     std::string rest = line;
-    while (std::regex_search(rest, match, image_command)) {
+    while (std::regex_search(rest, match, image_command())) {
       out += match.prefix().str();
       std::string file = match[2].str();
       if (file.front() == '"') file = file.substr(1, file.size() - 2);
@@ -279,8 +338,13 @@ std::vector<std::string> resolve_figures(const Settings& settings, Chapter& chap
       if (file.find("://") != std::string::npos) {
         out += match.str();
       } else if (auto source = find_figure(settings, chapter.dir, file)) {
-        out += "\\image" + match[1].str() + " html " + copy_figure(settings, chapter, *source) +
-               match[3].str();
+        // Numbered, with an anchor that \figref links to; the page's HTML wraps the image in a
+        // link to its full-size file (docs/build_docs.cmake).
+        const int k = chapter.figures.count(file) ? chapter.figures.at(file) : 0;
+        const std::string number = "Fig. " + chapter_number(chapter) + "." + std::to_string(k);
+        out += "\\anchor " + figure_anchor(chapter, k) + "\n\\image" + match[1].str() + " html " +
+               copy_figure(settings, chapter, *source) + " \"" + number +
+               (caption.empty() ? "" : ": " + caption) + "\"";
       } else {
         out += missing(file, caption);
       }
@@ -303,7 +367,9 @@ std::vector<std::string> resolve_figures(const Settings& settings, Chapter& chap
       rest = match.suffix().str();
     }
     second += rest;
-    result.push_back(second);
+    // The headings of results.md sit one level below the page's Results section.
+    if (!second.empty() && second.front() == '#') second.insert(0, "#");
+    result.push_back(cite_figures(chapter, second, "chapters/" + chapter.dir + "/results.md"));
   }
   return result;
 }
@@ -354,6 +420,31 @@ std::string navigation(const std::vector<Chapter>& chapters, std::size_t index) 
   return line.empty() ? "" : "<hr>\n" + line + "\n";
 }
 
+/// Writes the chapter's program twice into WORK/html/programs/ (linked from the head of its
+/// page): whole, and as "the plain program" -- the code without the prose lines, runs of blank
+/// lines left by the prose made one.  The .txt ending makes a browser show them as text.
+void write_programs(const Settings& settings, const Chapter& chapter,
+                    const std::vector<std::string>& lines) {
+  const fs::path dir = settings.work / "html" / "programs";
+  const std::string file = chapter.program.filename().string();
+  fs::create_directories(dir);
+  fs::copy_file(chapter.program, dir / (chapter.page + "-" + file + ".txt"),
+                fs::copy_options::overwrite_existing);
+  std::string plain = "// " + chapter.shown + " without its text: the plain program.\n\n";
+  bool blank = true;  // no blank lines at the top
+  for (const std::string& line : lines) {
+    if (prose_text(line)) continue;
+    if (is_blank(line)) {
+      if (!blank) plain += "\n";
+      blank = true;
+      continue;
+    }
+    plain += line + "\n";
+    blank = false;
+  }
+  write_file(dir / (chapter.page + "-plain-" + file + ".txt"), plain);
+}
+
 /// The page for chapter number \p index.
 Page convert(const Settings& settings, std::vector<Chapter>& chapters, std::size_t index) {
   Chapter& chapter = chapters[index];
@@ -373,8 +464,14 @@ Page convert(const Settings& settings, std::vector<Chapter>& chapters, std::size
     page.add(line);
     page.add("");
   }
+  const std::string file = chapter.program.filename().string();
   page.add("<em>This page is the program `" + chapter.shown + "`; run it as `build/chapters/" +
-           target_name(chapter.dir) + "` (`--help` lists its options).</em>");
+           target_name(chapter.dir) + "` (`--help` lists its options).  The same program as " +
+           "<a href=\"programs/" + chapter.page + "-" + file + ".txt\">one source file</a>, " +
+           "and as <a href=\"programs/" + chapter.page + "-plain-" + file +
+           ".txt\">the plain program</a>: its code without the text.</em>");
+  page.add("");
+  page.add("\\tableofcontents");
   page.add("");
 
   // The program: prose verbatim, code in blocks; the \page and \builds_on lines are taken out.
@@ -404,9 +501,11 @@ Page convert(const Settings& settings, std::vector<Chapter>& chapters, std::size
       continue;  // read by read_header()
     }
     emit_code(page, code);
-    page.add(*prose, at(chapter.program, number));
+    page.add(cite_figures(chapter, *prose, at(chapter.program, number)),
+             at(chapter.program, number));
   }
   emit_code(page, code);
+  write_programs(settings, chapter, lines);
 
   // The helper files, whole.
   for (const fs::path& helper : chapter.helpers) {
@@ -547,6 +646,111 @@ std::vector<Chapter> find_chapters(const Settings& settings) {
     chapters.push_back(std::move(chapter));
   }
   return chapters;
+}
+
+// ---- Where the library is used --------------------------------------------------------------
+
+/// A type declared at namespace level in a library header.
+struct LibraryType {
+  std::string keyword;    ///< "struct" or "class"
+  std::string qualified;  ///< "sph::MonaghanGingold1983"
+  std::string name;       ///< "MonaghanGingold1983"
+};
+
+/// A library header, named as the chapters include it ("sph/kernel.hpp"), and its types.
+struct LibraryHeader {
+  std::string name;
+  std::vector<LibraryType> types;
+};
+
+/// The headers under \p lib and the types each declares at namespace level (lines starting with
+/// "struct X" or "class X" that are not forward declarations; "detail" namespaces left out).
+std::vector<LibraryHeader> library_headers(const fs::path& lib) {
+  static const std::regex declaration(
+      R"re(^(struct|class)\s+([A-Za-z_]\w*)\s*(final\s*)?[:{].*)re");
+  static const std::regex namespace_line(R"re(^namespace\s+([A-Za-z_][\w:]*)\s*\{.*)re");
+  std::vector<LibraryHeader> headers;
+  if (!fs::is_directory(lib)) return headers;
+  for (const auto& entry : fs::recursive_directory_iterator(lib)) {
+    if (!entry.is_regular_file() || entry.path().extension() != ".hpp") continue;
+    LibraryHeader header{fs::relative(entry.path(), lib).generic_string(), {}};
+    std::string space;
+    for (const std::string& line : split_lines(read_file(entry.path()))) {
+      std::smatch match;
+      if (std::regex_match(line, match, namespace_line)) {
+        space = match[1].str();
+      } else if (std::regex_match(line, match, declaration) &&
+                 space.find("detail") == std::string::npos && !space.empty()) {
+        header.types.push_back({match[1].str(), space + "::" + match[2].str(), match[2].str()});
+      }
+    }
+    headers.push_back(std::move(header));
+  }
+  std::sort(headers.begin(), headers.end(),
+            [](const LibraryHeader& a, const LibraryHeader& b) { return a.name < b.name; });
+  return headers;
+}
+
+/// True if \p word occurs in \p text as a whole identifier.
+bool mentions(const std::string& text, const std::string& word) {
+  auto is_identifier = [](char c) {
+    return std::isalnum(static_cast<unsigned char>(c)) || c == '_';
+  };
+  for (auto at = text.find(word); at != std::string::npos; at = text.find(word, at + 1)) {
+    const bool left = at == 0 || !is_identifier(text[at - 1]);
+    const bool right = at + word.size() >= text.size() || !is_identifier(text[at + word.size()]);
+    if (left && right) return true;
+  }
+  return false;
+}
+
+/// Writes WORK/pages/used_in.dox: for every library header and type that a chapter's code uses
+/// (it includes the header, or names the type), a "Used in the chapters" paragraph that
+/// Doxygen adds to the header's and the type's reference pages, so that a reader of the
+/// reference can go back to the chapters that teach and use it.
+void write_used_in(const Settings& settings, const std::vector<Chapter>& chapters) {
+  const std::vector<LibraryHeader> headers =
+      library_headers(settings.chapters.parent_path() / "lib");
+  std::vector<std::string> code;  // the code lines of each chapter, prose left out
+  for (const Chapter& chapter : chapters) {
+    std::string text;
+    std::vector<fs::path> files = chapter.helpers;
+    files.push_back(chapter.program);
+    for (const fs::path& file : files) {
+      for (const std::string& line : split_lines(read_file(file))) {
+        if (!prose_text(line)) text += line + "\n";
+      }
+    }
+    code.push_back(std::move(text));
+  }
+  auto refs = [&](const std::vector<std::size_t>& users) {
+    std::string line;
+    for (std::size_t i : users) line += (line.empty() ? "" : ", ") + ("\\ref " + chapters[i].page);
+    return line;
+  };
+  std::ostringstream out;
+  out << "/// \\file used_in.dox\n/// \\brief Generated: where the chapters use the library.\n\n";
+  for (const LibraryHeader& header : headers) {
+    std::vector<std::size_t> users;
+    for (std::size_t i = 0; i < chapters.size(); ++i) {
+      bool used = code[i].find("#include \"" + header.name + "\"") != std::string::npos;
+      for (const LibraryType& type : header.types) used = used || mentions(code[i], type.name);
+      if (used) users.push_back(i);
+    }
+    if (users.empty()) continue;
+    out << "/// \\file " << header.name << "\n/// \\par Used in the chapters\n/// " << refs(users)
+        << "\n\n";
+    for (const LibraryType& type : header.types) {
+      std::vector<std::size_t> type_users;
+      for (std::size_t i : users) {
+        if (mentions(code[i], type.name)) type_users.push_back(i);
+      }
+      if (type_users.empty()) continue;
+      out << "/// \\" << type.keyword << " " << type.qualified
+          << "\n/// \\par Used in the chapters\n/// " << refs(type_users) << "\n\n";
+    }
+  }
+  write_file(settings.work / "pages" / "used_in.dox", out.str());
 }
 
 // ---- The main page ----------------------------------------------------------------------------
@@ -709,6 +913,7 @@ int main(int argc, char** argv) {
         warn("chapters/" + chapter.dir + ": page name " + chapter.page + " is used twice");
       }
     }
+    for (Chapter& chapter : chapters) number_figures(chapter);
     for (std::size_t i = 0; i < chapters.size(); ++i) {
       const Page page = convert(settings, chapters, i);
       const Chapter& chapter = chapters[i];
@@ -721,6 +926,7 @@ int main(int argc, char** argv) {
       }
     }
     write_file(settings.work / "pages" / "mainpage.md", main_page(settings, chapters));
+    write_used_in(settings, chapters);
     write_file(settings.work / "pages" / "chapters.md", chapters_page(chapters));
 
     std::cout << "literate: " << chapters.size() << " chapter page"

@@ -21,6 +21,8 @@ namespace plot::detail {
 /// Largest supersampled buffer side OSMesa accepts.
 inline constexpr int max_buffer_side = 16384;
 
+/// An OSMesa context and its supersampled colour buffer: draws in pixels, reads back the
+/// box-filtered image.
 class Canvas {
   public:
     /// A \p width × \p height canvas rendered at \p supersample × that resolution.

@@ -15,6 +15,8 @@
 
 namespace sph {
 
+/// The domain of a D-dimensional scene: its lower and upper corners and which axes are
+/// periodic.
 template <int D>
 struct Box {
   Vec<D> lower = Vec<D>::Zero();   ///< lower corner (used on periodic axes)

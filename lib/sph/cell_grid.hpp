@@ -82,6 +82,8 @@ Vec<D> image_offset(Image image, const Box<D>& box) {
   return offset;
 }
 
+/// Particles counting-sorted into uniform cells, with sorted copies of their positions, for
+/// the search of all particles within a radius of a point.
 template <int D>
 class CellGrid {
  public:

@@ -71,6 +71,8 @@ inline Pair<D> pair_geometry(const ParticleView<D>& in, std::size_t i, const Nei
 /// compiler keeps them in registers across the SIMD lanes.)
 struct NoPairAcceleration {};
 struct NoHeatingFactor {};
+/// What one pair contributes in the force pass: the central factor, the non-central
+/// acceleration and heating (present only if a term has them) and \f$ |\mu_{ij}| \f$.
 template <bool with_extra, bool with_heating>
 struct PairForce {
   double f, rv, mu;

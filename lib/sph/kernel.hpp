@@ -27,7 +27,10 @@ struct KernelShape {
 };
 
 /// The M4 cubic spline of Monaghan & Lattanzio (1985): Selhammar (1997) eq 3, Watkins et al.
-/// (1996) eqs A2-A3.  Support 2h; normalisation 2/3, 10/(7 pi), 1/pi in 1D, 2D, 3D.
+/// (1996) eqs A2-A3.  Support 2h; normalisation 2/3, 10/(7 pi), 1/pi in 1D, 2D, 3D:
+/// \f[ w(q) = \begin{cases} 1 - \tfrac32 q^2 + \tfrac34 q^3, & 0 \le q < 1,
+///     \\ \tfrac14 (2 - q)^3, & 1 \le q < 2, \\ 0, & q \ge 2, \end{cases} \qquad
+///     \sigma_D = \tfrac23,\ \tfrac{10}{7\pi},\ \tfrac1\pi . \f]
 struct CubicSpline {
   static constexpr const char* name = "M4 cubic spline";
   static constexpr double support = 2.0;  ///< W = 0 for q >= support
@@ -53,7 +56,10 @@ struct CubicSpline {
 
 /// The Wendland C2 kernel (Wendland 1995; Dehnen & Aly 2012), scaled to the same support 2h as
 /// the M4 so the two can be swapped at equal h.  Given for comparison: it has no pairing
-/// instability at large neighbour numbers.  In 1D the C2 function differs from 2D/3D.
+/// instability at large neighbour numbers.  In 1D the C2 function differs from 2D/3D; with
+/// \f$ s = q/2 \f$ and \f$ w = 0 \f$ for \f$ s \ge 1 \f$,
+/// \f[ w_{1D}(q) = (1 - s)^3 (1 + 3s), \quad w_{2D,3D}(q) = (1 - s)^4 (1 + 4s), \qquad
+///     \sigma_D = \frac{5}{8},\ \frac{7}{4\pi},\ \frac{21}{16\pi} . \f]
 template <int D>
 struct WendlandC2 {
   static constexpr const char* name = "Wendland C2";

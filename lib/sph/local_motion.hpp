@@ -28,6 +28,8 @@
 
 namespace sph {
 
+/// The displacement of every particle since the last full neighbour search, and the bound
+/// it gives on how far any two nearby particles can have moved relative to each other.
 template <int D>
 class LocalMotion {
  public:

@@ -14,6 +14,8 @@
 
 namespace sph {
 
+/// One interacting pair (i, j) as a term's pair function sees it: separation, relative
+/// velocity, kernel gradient and the two particles' state.
 template <int D>
 struct Pair {
   std::size_t i = 0, j = 0;

@@ -26,6 +26,8 @@ namespace sph {
 /// may have fixed particles.
 enum class ParticleKind : std::uint8_t { fluid = 0, fixed = 1 };
 
+/// The particle set of a D-dimensional scene as a structure of arrays: positions,
+/// velocities, masses, internal energies, smoothing lengths and the fields each pass writes.
 template <int D>
 struct Particles {
   // --- set by the initial conditions, advanced by the integrator ---------------------------

@@ -35,6 +35,9 @@
 
 namespace sph {
 
+/// The defaults of every slot of a scene in Dim dimensions (M4 kernel, ideal gas, no terms,
+/// no gravity, no external potential, no boundaries, leapfrog): a scene derives from it and
+/// names what differs.
 template <int Dim>
 requires SupportedDimension<Dim>
 struct Scene {

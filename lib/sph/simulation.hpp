@@ -69,6 +69,8 @@ struct TimestepLimit {
   double dt = 0;
 };
 
+/// The particles, the box and the parts a scene S names, evaluated together: the passes of
+/// one evaluation, the time step they allow, and the integrator's step.
 template <class S>
 class Simulation {
  public:

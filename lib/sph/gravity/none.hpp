@@ -16,6 +16,7 @@
 
 namespace sph {
 
+/// The empty gravity module: a scene without self-gravity evaluates nothing here.
 struct NoGravity {
   static constexpr const char* name = "none";
   static constexpr bool active = false;

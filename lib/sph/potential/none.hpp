@@ -17,6 +17,7 @@
 
 namespace sph {
 
+/// The empty external potential: no acceleration, no energy, no limit on the time step.
 struct NoExternalPotential {
   static constexpr const char* name = "none";
   static constexpr bool active = false;

@@ -19,6 +19,8 @@
 
 namespace sph {
 
+/// A softened point mass at a fixed position: its acceleration, potential energy and
+/// orbital time-step limit.
 template <int D>
 struct PointMass {
   static constexpr const char* name = "point mass";

@@ -13,6 +13,7 @@
 
 namespace sph {
 
+/// A uniform acceleration \f$ \mathbf g \f$ everywhere (no limit on the time step).
 template <int D>
 struct UniformField {
   static constexpr const char* name = "uniform field";

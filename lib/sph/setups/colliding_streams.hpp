@@ -47,6 +47,8 @@ struct CollidingStreamsSetup {
   double pressure() const { return density * sound_speed() * sound_speed() / gamma; }
 };
 
+/// The particles, box and inflow parameters of two cold streams colliding head on (the
+/// penetration test of chapters 3 and 5).
 template <int D>
 struct CollidingStreams {
   Particles<D> particles;

@@ -36,6 +36,8 @@
 
 namespace sph {
 
+/// The parameters of the Evrard sphere (mass, radius, G, u, gamma, particle count, lattice
+/// disturbance) and the particles they make.
 struct EvrardSetup {
   int particles = 8192;
   double radius = 1.0, mass = 1.0, G = 1.0;

@@ -65,6 +65,8 @@ struct ShockTubeSetup {
   }
 };
 
+/// A shock tube ready to run: its particles, its box, and the exact solution to compare
+/// with.
 template <int D>
 struct ShockTube {
   Particles<D> particles;

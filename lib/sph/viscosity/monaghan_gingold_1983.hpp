@@ -26,6 +26,9 @@
 
 namespace sph {
 
+/// The term of the standard viscosity (eq 6 of Selhammar): the pair bracket
+/// \f$ \Pi_{ij} = (-\alpha \bar c_{ij} \mu_{ij} + \beta \mu_{ij}^2)/\bar\rho_{ij} \f$ for
+/// approaching pairs, and its signal speed for the time step.
 struct MonaghanGingold1983 {
   static constexpr bool tracks_mu = true;  ///< the force pass keeps max_j mu_ij (eq 7)
   static constexpr const char* name = "Monaghan & Gingold (1983) AV";

@@ -42,6 +42,8 @@
 
 namespace sph {
 
+/// The term of the Morris & Monaghan (1997) switch: a viscosity coefficient \f$ \alpha_i \f$
+/// per particle that grows in compression and decays over a few sound-crossing times of h.
 struct MorrisMonaghan1997 {
   static constexpr bool tracks_mu = true;
   static constexpr Needs needs = Needs::velocity_divergence;

@@ -259,10 +259,12 @@ struct SelhammarCollective {
   }
 
   // --- the gradient pass: eq 14 without i's own term --------------------------------------
+  /// What the gradient pass sums for particle i: the weights of its neighbours and their
+  /// weighted velocities (eq 14 without i's own term).
   template <int Dim>
   struct GradientSum {
-    double w = 0;
-    double wv[3] = {0, 0, 0};
+    double w = 0;              ///< sum of the weights
+    double wv[3] = {0, 0, 0};  ///< sum of the weighted velocities
   };
   void gradient_pair(GradientSum<D>& sum, const Pair<D>& p, const ParticleView<D>& in) const {
     const double volume = (in.m[p.i] + in.m[p.j]) / (in.rho[p.i] + in.rho[p.j]);  // m_bar/rho_bar

@@ -160,10 +160,12 @@ class WatkinsViscosity {
     volume[i] = in.m[i] * inverse_density[i];
   }
 
+  /// What the gradient pass sums for particle i: the velocity gradient (eqs 4 and 6, the
+  /// neighbour's volume as weight) and, for varying coefficients, their gradients (eq 7).
   template <int Dim>
   struct GradientSum {
-    double J[D][D] = {};
-    double grad_shear[D] = {}, grad_bulk[D] = {};
+    double J[D][D] = {};                           ///< J[a][b] = d v_a / d x_b
+    double grad_shear[D] = {}, grad_bulk[D] = {};  ///< gradients of mu_s and mu_b
   };
   void gradient_pair(GradientSum<D>& sum, const Pair<D>& p, const ParticleView<D>& in) const {
     const double g = volume[p.j] * p.gradient_factor;  // V_j grad_i W_ij = g r_ij
