@@ -64,6 +64,26 @@
 /// transform is positive in every dimension, which protects it from the *pairing instability*
 /// that afflicts the M4 at large neighbour numbers (Dehnen & Aly 2012).  We shall see the
 /// M4's negative Fourier lobe in 3D below.
+///
+/// \section ch01_program The program
+///
+/// Nothing in this chapter is physics yet: no particles, no time steps.  But the later chapters
+/// evaluate this kernel billions of times, and a kernel that is slightly wrong does not announce
+/// itself.  A normalisation off by a rational factor makes every density off by that factor and
+/// every figure still smooth; a gradient with the wrong sign in one piece makes particles attract
+/// where they should repel, and the first symptom may be a clumpy glass three chapters later.  So
+/// the program checks every property this section has claimed, by numbers against exact values,
+/// and draws the kernel.  It has six steps, each a function below under its own heading, and
+/// `main` at the end calls them in order:
+///  1. integrals of the kernel over the radius by Simpson's rule (a tool);
+///  2. the Fourier transform of a radial kernel (a tool);
+///  3. the kernel's derivative against a finite difference of its value (a tool);
+///  4. the normalisation table: \f$ \sigma_D \f$ three ways, \f$ \int W\,dV \f$, the derivative's
+///     error and the second moment, in 1D, 2D and 3D for both kernels, each checked;
+///  5. the transform measured: the M4 as the cubic B-spline in 1D, its negative lobe in 3D;
+///  6. the figure.
+///
+/// The output is deterministic: it does not depend on the machine or the number of threads.
 
 #include "app/chapter.hpp"
 #include "plot/figure.hpp"
@@ -170,13 +190,27 @@ double worst_gradient_error(int samples) {
 
 /// \section ch01_table Step 4: the normalisation table
 ///
-/// One row per kernel and dimension: the shape integral \f$ I_D \f$ by quadrature, the
-/// \f$ \sigma_D \f$ it implies, the library's \f$ \sigma_D \f$, the reference value (for the M4
-/// Watkins' eq A3 times \f$ \frac23 \f$, which in 3D is also Selhammar's eq 3; for the Wendland C2
-/// Dehnen & Aly 2012, Table 1, rescaled to support 2h), \f$ \int W\,dV - 1 \f$, the worst
-/// relative error of \f$ dW/dr \f$ against finite differences, and the second moment
-/// \f$ \langle r^2 \rangle / h^2 \f$.  The chapter checks that \f$ \int W\,dV \f$ is one to
-/// \f$ 10^{-10} \f$ and that the three values of \f$ \sigma_D \f$ agree.
+/// Steps 1-3 were tools; this step uses them.  One row per kernel and dimension: the shape
+/// integral \f$ I_D \f$ by quadrature, the \f$ \sigma_D \f$ it implies, the library's
+/// \f$ \sigma_D \f$, the reference value (for the M4 Watkins' eq A3 times \f$ \frac23 \f$,
+/// which in 3D is also Selhammar's eq 3; for the Wendland C2 Dehnen & Aly 2012, Table 1, rescaled
+/// to support 2h), \f$ \int W\,dV - 1 \f$, the worst relative error of \f$ dW/dr \f$ against
+/// finite differences, and the second moment \f$ \langle r^2 \rangle / h^2 \f$.
+///
+/// Each row is also checked, against a tolerance that says what could go wrong (see "The checks"
+/// below for where each number comes from): \f$ \int W\,dV \f$ is one to \f$ 10^{-10} \f$, the
+/// three values of \f$ \sigma_D \f$ agree, the derivative agrees with the finite difference, and
+/// the M4's shape integrals are the fractions \f$ \frac34, \frac{7}{20}, \frac14 \f$ of the
+/// text.
+///
+/// <b>What to look for.</b>  Three columns of \f$ \sigma_D \f$ that agree to every printed
+/// digit: the quadrature, the library and the papers are the same kernel.  A column
+/// \f$ \int W\,dV - 1 \f$ of round-off (\f$ 10^{-15} \f$ to \f$ 10^{-12} \f$): the integral was
+/// taken of the dimensional \f$ W(r, h) \f$ at \f$ h = 0.37 \f$, so the library's
+/// \f$ h^{-D} \f$ is tested as well as its shape.  A gradient error of \f$ 3\cdot 10^{-7} \f$ in
+/// every row -- suspiciously the same for both kernels, because it is the finite difference's
+/// error, not the kernel's (the results explain it).  And the last column, which is different
+/// for the two kernels at the same h: they do not smooth equally.
 
 struct Row {
   std::string kernel;
@@ -198,7 +232,131 @@ Row normalisation_row(const std::string& name, double sigma_reference, int inter
   return row;
 }
 
-/// \section ch01_figure Step 5: the figure
+std::string format(const char* pattern, double value) {
+  char text[64];
+  std::snprintf(text, sizeof text, pattern, value);
+  return text;
+}
+
+// The kernels of the chapter: the M4 and the Wendland C2 in 1D, 2D and 3D.
+using M4_1 = sph::Kernel<1>;
+using M4_2 = sph::Kernel<2>;
+using M4_3 = sph::Kernel<3>;
+using C2_1 = sph::Kernel<1, sph::WendlandC2<1>>;
+using C2_2 = sph::Kernel<2, sph::WendlandC2<2>>;
+using C2_3 = sph::Kernel<3, sph::WendlandC2<3>>;
+
+void step4_normalisation_table(app::Chapter& chapter, int intervals) {
+  // The papers' normalisations: Selhammar eq 3 in 3D, Watkins eq A3 times 2/3 in 1D-3D.
+  const std::vector<Row> rows = {
+      normalisation_row<1, M4_1>("M4", 2.0 / 3.0 * 1.0, intervals),
+      normalisation_row<2, M4_2>("M4", 2.0 / 3.0 * 15.0 / (7.0 * pi), intervals),
+      normalisation_row<3, M4_3>("M4", 2.0 / 3.0 * 3.0 / (2.0 * pi), intervals),
+      normalisation_row<1, C2_1>("Wendland C2", 5.0 / 8.0, intervals),
+      normalisation_row<2, C2_2>("Wendland C2", 7.0 / (4.0 * pi), intervals),
+      normalisation_row<3, C2_3>("Wendland C2", 21.0 / (16.0 * pi), intervals),
+  };
+  std::printf("Normalisation of the kernels, W = sigma_D / h^D w(r/h), support 2h;\n");
+  std::printf("I_D = int_0^2 w(q) q^(D-1) dq, S_D = 2, 2 pi, 4 pi\n\n");
+  std::printf("%-11s %1s %12s %12s %12s %12s %11s %9s %9s\n", "kernel", "D", "I_D", "1/(S_D I_D)",
+              "sigma (lib)", "sigma (ref)", "int W dV-1", "dW/dr err", "<r^2>/h^2");
+  for (const Row& r : rows) {
+    std::printf("%-11s %1d %12.10f %12.10f %12.10f %12.10f %11.2e %9.2e %9.6f\n", r.kernel.c_str(),
+                r.dimension, r.shape_integral, r.sigma_from_integral, r.sigma_library,
+                r.sigma_reference, r.volume_integral - 1.0, r.gradient_error, r.moment);
+    const std::string who = r.kernel + " in " + std::to_string(r.dimension) + "D";
+    chapter.check(
+        std::abs(r.volume_integral - 1.0) < 1e-10,
+        who + ": int W dV = " + format("%.15f", r.volume_integral) + ", expected 1 to 1e-10");
+    chapter.check(std::abs(r.sigma_library / r.sigma_reference - 1.0) < 1e-14,
+                  who + ": library sigma " + format("%.15f", r.sigma_library) +
+                      " differs from the reference " + format("%.15f", r.sigma_reference));
+    chapter.check(std::abs(r.sigma_from_integral / r.sigma_library - 1.0) < 1e-10,
+                  who + ": sigma from the quadrature " + format("%.15f", r.sigma_from_integral) +
+                      " differs from the library's");
+    chapter.check(r.gradient_error < 1e-6, who + ": dW/dr differs from finite differences by " +
+                                               format("%.2e", r.gradient_error) +
+                                               " (relative), limit 1e-6");
+  }
+  // The exact shape integrals of the M4 quoted in the text: 3/4, 7/20, 1/4.
+  const double exact_integrals[] = {0.75, 0.35, 0.25};
+  for (int d = 0; d < 3; ++d) {
+    chapter.check(std::abs(rows[d].shape_integral - exact_integrals[d]) < 1e-10,
+                  "M4 shape integral I_" + std::to_string(d + 1) + " = " +
+                      format("%.15f", rows[d].shape_integral) + ", expected " +
+                      format("%.4f", exact_integrals[d]));
+  }
+
+  /// The second moment \f$ \langle r^2 \rangle = \int r^2 W\, dV \f$ sets the leading
+  /// smoothing error: expanding \f$ A(\mathbf r') \f$ to second order under the integral,
+  /// \f$ \langle A\rangle = A + \frac{\langle r^2\rangle}{2D} \nabla^2 A + O(h^4) \f$.  For the
+  /// 1D M4 it is \f$ h^2/3 \f$ -- the variance of four unit top-hats, \f$ 4 \times \frac1{12} \f$
+  /// -- so a wave \f$ \sin kx \f$ is smoothed by \f$ 1 - k^2h^2/6 \f$, the leading term of
+  /// \f$ \hat W(k) \f$ above.  The error is second order in h: halving h quarters it.
+  chapter.check(std::abs(rows[0].moment - 1.0 / 3.0) < 1e-12,
+                "1D M4 second moment " + format("%.15f", rows[0].moment) + ", expected 1/3");
+  double worst_integral = 0;
+  for (const Row& r : rows)
+    worst_integral = std::max(worst_integral, std::abs(r.volume_integral - 1.0));
+  chapter.summary("error", "max |int W dV - 1| = " + format("%.1e", worst_integral));
+}
+
+/// \section ch01_fourier_measured Step 5: the transform, measured
+///
+/// Two numbers from Step 2's transform.  In 1D we compare the computed transform of the M4 with
+/// the B-spline formula \f$ (\sin(kh/2)/(kh/2))^4 \f$ at 400 values of kh: if the M4 is the cubic
+/// B-spline, the two agree to the quadrature's accuracy.  In 3D we look for the smallest value of
+/// each kernel's transform over \f$ 0 < kh \le 20 \f$, which tells whether the kernel is safe
+/// from the pairing instability (a negative value means it is not, at large enough neighbour
+/// numbers).
+///
+/// <b>What to look for.</b>  A 1D difference of round-off size, \f$ 10^{-12} \f$ or less; a 3D
+/// minimum below zero for the M4, near \f$ kh \approx 8 \f$, and a positive one for the
+/// Wendland C2.
+
+/// The deepest point of the 3D M4 transform, and the smallest value of the 3D Wendland C2's.
+struct Lobe {
+  double m4_min = 1, m4_at = 0, c2_min = 1;
+};
+
+Lobe step5_transform_measured(app::Chapter& chapter, int intervals) {
+  double worst_fourier = 0;
+  for (int k = 1; k <= 400; ++k) {
+    const double kh = 0.05 * k;
+    const double bspline = std::pow(std::sin(kh / 2) / (kh / 2), 4);
+    worst_fourier =
+        std::max(worst_fourier, std::abs(fourier_transform<1, M4_1>(kh, intervals) - bspline));
+  }
+  Lobe lobe;
+  for (int k = 1; k <= 2000; ++k) {
+    const double kh = 0.01 * k;
+    const double m4 = fourier_transform<3, M4_3>(kh, intervals),
+                 c2 = fourier_transform<3, C2_3>(kh, intervals);
+    if (m4 < lobe.m4_min) {
+      lobe.m4_min = m4;
+      lobe.m4_at = kh;
+    }
+    lobe.c2_min = std::min(lobe.c2_min, c2);
+  }
+  std::printf(
+      "\nFourier transform of the M4 in 1D against (sin(kh/2)/(kh/2))^4, 0 < kh <= 20:\n"
+      "  largest difference %.2e\n",
+      worst_fourier);
+  std::printf(
+      "Smallest value of the 3D transform for 0 < kh <= 20:\n"
+      "  M4 %.3e (at kh = %.2f), Wendland C2 %.3e\n",
+      lobe.m4_min, lobe.m4_at, lobe.c2_min);
+  chapter.check(worst_fourier < 1e-9, "1D M4 transform differs from the B-spline formula by " +
+                                          format("%.2e", worst_fourier));
+  chapter.check(lobe.m4_min < -1e-4, "expected a negative lobe of the 3D M4 transform, minimum " +
+                                         format("%.3e", lobe.m4_min));
+  chapter.check(lobe.c2_min > -1e-9,
+                "the 3D Wendland C2 transform went negative: " + format("%.3e", lobe.c2_min));
+  chapter.summary("m4_3d_fourier_min", format("%.4e", lobe.m4_min));
+  return lobe;
+}
+
+/// \section ch01_figure Step 6: the figure
 ///
 /// Four panels.  (a) \f$ h^D W \f$ against \f$ q = r/h \f$ -- the kernel as a sum sees it, in
 /// each dimension; (b) its slope \f$ h^{D+1}\, dW/dr \f$, whose most negative point (at
@@ -207,6 +365,11 @@ Row normalisation_row(const std::string& name, double sigma_reference, int inter
 /// has unit area) -- in 3D most of the weight sits near \f$ q = 1 \f$, not at the centre;
 /// (d) the tail of the Fourier transform, magnified, where the M4 goes negative in 3D and the
 /// Wendland C2 does not.
+///
+/// <b>What to look for.</b>  In (a), how much lower and wider the kernel is in 3D than in 1D at
+/// the same h (the \f$ h^{-D} \f$ and \f$ \sigma_D \f$ spread the same unit integral over more
+/// volume); in (c), that the 3D curves vanish at the centre; in (d), the blue solid curve dipping
+/// below the dotted zero line while the blue dashed one stays above it.
 
 struct Curves {
   std::vector<double> q, value, slope, weight;
@@ -246,22 +409,45 @@ void draw_fourier(plot::Axes& axes, int samples, int intervals, plot::Color colo
   axes.line(kh, transform, {.label = label, .color = color, .style = dash, .width = 2.0});
 }
 
-std::string format(const char* pattern, double value) {
-  char text[64];
-  std::snprintf(text, sizeof text, pattern, value);
-  return text;
+// The figure, written to `kernel.png` in the output directory.
+void step6_figure(const app::Chapter& chapter, int intervals, int samples, const Lobe& lobe) {
+  plot::Figure figure(2, 2, {.width = 1600, .height = 1200});
+  figure.title("The M4 cubic spline (solid) and the Wendland C2 kernel (dashed), support 2h");
+  figure.stamp(plot::Stamp{.kernel = "M4 and Wendland C2", .run_time = chapter.seconds()});
+  const plot::Color colours[] = {plot::black, plot::red, plot::blue};
+  draw_kernel<1, M4_1>(figure, samples, colours[0], plot::Dash::solid, "M4, 1D");
+  draw_kernel<2, M4_2>(figure, samples, colours[1], plot::Dash::solid, "M4, 2D");
+  draw_kernel<3, M4_3>(figure, samples, colours[2], plot::Dash::solid, "M4, 3D");
+  draw_kernel<1, C2_1>(figure, samples, colours[0], plot::Dash::dashed, "C2, 1D");
+  draw_kernel<2, C2_2>(figure, samples, colours[1], plot::Dash::dashed, "C2, 2D");
+  draw_kernel<3, C2_3>(figure, samples, colours[2], plot::Dash::dashed, "C2, 3D");
+  figure.panel(0).xlabel("q = r/h").ylabel("h^D W").legend(plot::Corner::upper_right);
+  figure.panel(1).xlabel("q = r/h").ylabel("h^{D+1} dW/dr").legend(plot::Corner::lower_right);
+  figure.panel(1).hline(0.0, {.color = plot::grey, .style = plot::Dash::dotted, .width = 1.0});
+  figure.panel(2)
+      .xlabel("q = r/h")
+      .ylabel("S_D q^{D-1} h^D W  (unit area)")
+      .legend(plot::Corner::upper_right);
+  plot::Axes& fourier = figure.panel(3);
+  draw_fourier<1, M4_1>(fourier, samples, intervals, colours[0], plot::Dash::solid,
+                        "M4, 1D = (sin(kh/2)/(kh/2))^4");
+  draw_fourier<3, M4_3>(fourier, samples, intervals, colours[2], plot::Dash::solid, "M4, 3D");
+  draw_fourier<3, C2_3>(fourier, samples, intervals, colours[2], plot::Dash::dashed, "C2, 3D");
+  fourier.hline(0.0, {.color = plot::grey, .style = plot::Dash::dotted, .width = 1.0});
+  fourier.text(lobe.m4_at + 0.6, lobe.m4_min,
+               "M4 in 3D < 0 near kh = " + format("%.1f", lobe.m4_at), {.color = plot::blue});
+  fourier.xlabel("kh")
+      .ylabel("Fourier transform of W (tail, magnified)")
+      .ylim(-0.002, 0.006)
+      .xlim(0, 20);
+  fourier.legend(plot::Corner::upper_right);
+  figure.save_png(chapter.figure_path("kernel.png"));
+  std::printf("\nFigure: kernel.png in the output directory\n");
 }
 
 }  // namespace
 
-/// \section ch01_main The program
-///
-/// The main program fills the table, prints it, checks every entry against the exact values,
-/// compares the 1D Fourier transform with the B-spline formula, measures the smallest value of
-/// the 3D transforms, and draws the figure.  With `--quick` it uses coarser quadrature and
-/// fewer figure samples (the checks hold either way); `--intervals` sets the quadrature
-/// directly, so a reader can watch the checks fail when the quadrature is too coarse
-/// (with `--intervals 2` the 2D integral is 1 % off, and eleven checks say so).
+/// \section ch01_checks The checks
 ///
 /// Every check compares a number with its exact value and a stated tolerance.  The
 /// tolerances are not arbitrary:
@@ -278,6 +464,25 @@ std::string format(const char* pattern, double value) {
 ///  - the 1D transform against \f$ (\sin(kh/2)/(kh/2))^4 \f$ to \f$ 10^{-9} \f$: the two are
 ///    the same function if and only if the M4 is the cubic B-spline.
 
+/// \section ch01_next What comes next
+///
+/// Chapter 2 puts particles under the kernel: the density sum \f$ \rho_i = \sum_j m_j W_{ij} \f$,
+/// the neighbour search that finds the j within \f$ 2h \f$, and the choice of h.  Two results of
+/// this chapter return there.  The Fourier transform decides how well a lattice of particles
+/// represents a uniform density: by Poisson summation the lattice's density error is the sum of
+/// the transform over its reciprocal lattice vectors, which is why that error vanishes at
+/// \f$ h = \Delta x \f$ in 1D, where \f$ (\sin(kh/2)/(kh/2))^4 \f$ has its zeros.  And the radial
+/// weight of panel (c) explains why the error in 3D is so sensitive to where the lattice's shells
+/// of neighbours fall relative to h.
+
+/// \section ch01_main The main program
+///
+/// The main program reads its one option, then runs the steps in order: the table (Step 4,
+/// which uses the tools of Steps 1 and 3), the transform (Step 5, with the tool of Step 2) and
+/// the figure (Step 6).  With `--quick` it uses 400 instead of 2000 Simpson intervals per piece
+/// and fewer figure samples (the checks hold either way); `--intervals` sets the quadrature
+/// directly, so that a reader can watch the checks fail when the quadrature is too coarse.
+
 int main(int argc, char** argv) {
   return app::run_main([&] {
     app::Chapter chapter("01-kernel", "Chapter 1: The smoothing kernel", argc, argv);
@@ -289,135 +494,9 @@ int main(int argc, char** argv) {
     if (chapter.quick()) intervals = std::min(intervals, 400);
     const int samples = chapter.quick() ? 200 : 800;
 
-    using M4_1 = sph::Kernel<1>;
-    using M4_2 = sph::Kernel<2>;
-    using M4_3 = sph::Kernel<3>;
-    using C2_1 = sph::Kernel<1, sph::WendlandC2<1>>;
-    using C2_2 = sph::Kernel<2, sph::WendlandC2<2>>;
-    using C2_3 = sph::Kernel<3, sph::WendlandC2<3>>;
-
-    // The papers' normalisations: Selhammar eq 3 in 3D, Watkins eq A3 times 2/3 in 1D-3D.
-    const std::vector<Row> rows = {
-        normalisation_row<1, M4_1>("M4", 2.0 / 3.0 * 1.0, intervals),
-        normalisation_row<2, M4_2>("M4", 2.0 / 3.0 * 15.0 / (7.0 * pi), intervals),
-        normalisation_row<3, M4_3>("M4", 2.0 / 3.0 * 3.0 / (2.0 * pi), intervals),
-        normalisation_row<1, C2_1>("Wendland C2", 5.0 / 8.0, intervals),
-        normalisation_row<2, C2_2>("Wendland C2", 7.0 / (4.0 * pi), intervals),
-        normalisation_row<3, C2_3>("Wendland C2", 21.0 / (16.0 * pi), intervals),
-    };
-    std::printf("Normalisation of the kernels, W = sigma_D / h^D w(r/h), support 2h\n\n");
-    std::printf("%-12s %2s %14s %14s %14s %14s %18s %12s %10s\n", "kernel", "D", "I_D=int w q^D-1",
-                "1/(S_D I_D)", "sigma (lib)", "sigma (ref)", "int W dV - 1", "grad error",
-                "<r^2>/h^2");
-    for (const Row& r : rows) {
-      std::printf("%-12s %2d %14.10f %14.10f %14.10f %14.10f %18.3e %12.2e %10.6f\n",
-                  r.kernel.c_str(), r.dimension, r.shape_integral, r.sigma_from_integral,
-                  r.sigma_library, r.sigma_reference, r.volume_integral - 1.0, r.gradient_error,
-                  r.moment);
-      const std::string who = r.kernel + " in " + std::to_string(r.dimension) + "D";
-      chapter.check(
-          std::abs(r.volume_integral - 1.0) < 1e-10,
-          who + ": int W dV = " + format("%.15f", r.volume_integral) + ", expected 1 to 1e-10");
-      chapter.check(std::abs(r.sigma_library / r.sigma_reference - 1.0) < 1e-14,
-                    who + ": library sigma " + format("%.15f", r.sigma_library) +
-                        " differs from the reference " + format("%.15f", r.sigma_reference));
-      chapter.check(std::abs(r.sigma_from_integral / r.sigma_library - 1.0) < 1e-10,
-                    who + ": sigma from the quadrature " + format("%.15f", r.sigma_from_integral) +
-                        " differs from the library's");
-      chapter.check(r.gradient_error < 1e-6, who + ": dW/dr differs from finite differences by " +
-                                                 format("%.2e", r.gradient_error) +
-                                                 " (relative), limit 1e-6");
-    }
-    // The exact shape integrals of the M4 quoted in the text: 3/4, 7/20, 1/4.
-    const double exact_integrals[] = {0.75, 0.35, 0.25};
-    for (int d = 0; d < 3; ++d) {
-      chapter.check(std::abs(rows[d].shape_integral - exact_integrals[d]) < 1e-10,
-                    "M4 shape integral I_" + std::to_string(d + 1) + " = " +
-                        format("%.15f", rows[d].shape_integral) + ", expected " +
-                        format("%.4f", exact_integrals[d]));
-    }
-
-    /// The second moment \f$ \langle r^2 \rangle = \int r^2 W\, dV \f$ sets the leading
-    /// smoothing error: expanding \f$ A(\mathbf r') \f$ to second order under the integral,
-    /// \f$ \langle A\rangle = A + \frac{\langle r^2\rangle}{2D} \nabla^2 A + O(h^4) \f$.  For the
-    /// 1D M4 it is \f$ h^2/3 \f$ -- the variance of four unit top-hats, \f$ 4 \times \frac1{12} \f$
-    /// -- so a wave \f$ \sin kx \f$ is smoothed by \f$ 1 - k^2h^2/6 \f$, the leading term of
-    /// \f$ \hat W(k) \f$ above.  The error is second order in h: halving h quarters it.
-    chapter.check(std::abs(rows[0].moment - 1.0 / 3.0) < 1e-12,
-                  "1D M4 second moment " + format("%.15f", rows[0].moment) + ", expected 1/3");
-
-    // The 1D transform against the B-spline formula, and the smallest values of the 3D transforms.
-    double worst_fourier = 0;
-    for (int k = 1; k <= 400; ++k) {
-      const double kh = 0.05 * k;
-      const double bspline = std::pow(std::sin(kh / 2) / (kh / 2), 4);
-      worst_fourier =
-          std::max(worst_fourier, std::abs(fourier_transform<1, M4_1>(kh, intervals) - bspline));
-    }
-    double m4_min = 1, m4_at = 0, c2_min = 1;
-    for (int k = 1; k <= 2000; ++k) {
-      const double kh = 0.01 * k;
-      const double m4 = fourier_transform<3, M4_3>(kh, intervals),
-                   c2 = fourier_transform<3, C2_3>(kh, intervals);
-      if (m4 < m4_min) {
-        m4_min = m4;
-        m4_at = kh;
-      }
-      c2_min = std::min(c2_min, c2);
-    }
-    std::printf(
-        "\nFourier transform of the M4 in 1D against (sin(kh/2)/(kh/2))^4, 0 < kh <= 20: "
-        "largest difference %.2e\n",
-        worst_fourier);
-    std::printf(
-        "Smallest value of the 3D transform for 0 < kh <= 20: M4 %.3e (at kh = %.2f), Wendland C2 "
-        "%.3e\n",
-        m4_min, m4_at, c2_min);
-    chapter.check(worst_fourier < 1e-9, "1D M4 transform differs from the B-spline formula by " +
-                                            format("%.2e", worst_fourier));
-    chapter.check(m4_min < -1e-4, "expected a negative lobe of the 3D M4 transform, minimum " +
-                                      format("%.3e", m4_min));
-    chapter.check(c2_min > -1e-9,
-                  "the 3D Wendland C2 transform went negative: " + format("%.3e", c2_min));
-    double worst_integral = 0;
-    for (const Row& r : rows)
-      worst_integral = std::max(worst_integral, std::abs(r.volume_integral - 1.0));
-    chapter.summary("error", "max |int W dV - 1| = " + format("%.1e", worst_integral));
-    chapter.summary("m4_3d_fourier_min", format("%.4e", m4_min));
-
-    /// The figure is written to `kernel.png` in the output directory.
-    plot::Figure figure(2, 2, {.width = 1600, .height = 1200});
-    figure.title("The M4 cubic spline (solid) and the Wendland C2 kernel (dashed), support 2h");
-    figure.stamp(plot::Stamp{.kernel = "M4 and Wendland C2", .run_time = chapter.seconds()});
-    const plot::Color colours[] = {plot::black, plot::red, plot::blue};
-    draw_kernel<1, M4_1>(figure, samples, colours[0], plot::Dash::solid, "M4, 1D");
-    draw_kernel<2, M4_2>(figure, samples, colours[1], plot::Dash::solid, "M4, 2D");
-    draw_kernel<3, M4_3>(figure, samples, colours[2], plot::Dash::solid, "M4, 3D");
-    draw_kernel<1, C2_1>(figure, samples, colours[0], plot::Dash::dashed, "C2, 1D");
-    draw_kernel<2, C2_2>(figure, samples, colours[1], plot::Dash::dashed, "C2, 2D");
-    draw_kernel<3, C2_3>(figure, samples, colours[2], plot::Dash::dashed, "C2, 3D");
-    figure.panel(0).xlabel("q = r/h").ylabel("h^D W").legend(plot::Corner::upper_right);
-    figure.panel(1).xlabel("q = r/h").ylabel("h^{D+1} dW/dr").legend(plot::Corner::lower_right);
-    figure.panel(1).hline(0.0, {.color = plot::grey, .style = plot::Dash::dotted, .width = 1.0});
-    figure.panel(2)
-        .xlabel("q = r/h")
-        .ylabel("S_D q^{D-1} h^D W  (unit area)")
-        .legend(plot::Corner::upper_right);
-    plot::Axes& fourier = figure.panel(3);
-    draw_fourier<1, M4_1>(fourier, samples, intervals, colours[0], plot::Dash::solid,
-                          "M4, 1D = (sin(kh/2)/(kh/2))^4");
-    draw_fourier<3, M4_3>(fourier, samples, intervals, colours[2], plot::Dash::solid, "M4, 3D");
-    draw_fourier<3, C2_3>(fourier, samples, intervals, colours[2], plot::Dash::dashed, "C2, 3D");
-    fourier.hline(0.0, {.color = plot::grey, .style = plot::Dash::dotted, .width = 1.0});
-    fourier.text(m4_at + 0.6, m4_min, "M4 in 3D < 0 near kh = " + format("%.1f", m4_at),
-                 {.color = plot::blue});
-    fourier.xlabel("kh")
-        .ylabel("Fourier transform of W (tail, magnified)")
-        .ylim(-0.002, 0.006)
-        .xlim(0, 20);
-    fourier.legend(plot::Corner::upper_right);
-    figure.save_png(chapter.figure_path("kernel.png"));
-    std::printf("\nFigure: %s\n", chapter.figure_path("kernel.png").c_str());
+    step4_normalisation_table(chapter, intervals);
+    const Lobe lobe = step5_transform_measured(chapter, intervals);
+    step6_figure(chapter, intervals, samples, lobe);
     return chapter.finish();
   });
 }

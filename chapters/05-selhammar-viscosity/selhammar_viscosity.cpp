@@ -1213,7 +1213,7 @@ Sphere step4_homologous_sphere(const app::Chapter& chapter, const Parameters& pa
   }
   std::printf("\n    largest before t = 0.45: %.1f %% at t = %.3f\n", 100 * result.census_max,
               t_census_max);
-  std::printf("    from t = 0.5, over the whole sphere:");
+  std::printf("    from t = 0.5, over the whole sphere:\n     ");
   for (double when : bounce_samples) {
     std::printf(" t = %.2f: %.0f %%;", when,
                 100 * at_time(modified.census_all_t, modified.census_all_on, when));
@@ -1248,7 +1248,7 @@ Sphere step4_homologous_sphere(const app::Chapter& chapter, const Parameters& pa
               result.boost_thermal_rest, result.boost_thermal_moving, rest.steps, moving.steps);
   std::printf("    without viscosity:  %.5f at rest, %.5f boosted (relative difference %.1e)\n",
               rest_none.thermal.back(), moving_none.thermal.back(), control);
-  std::printf("    restricted vNR on, at rest, over the sphere:");
+  std::printf("    restricted vNR on, at rest, over the sphere:\n     ");
   for (double when : bounce_samples)
     std::printf(" t = %.2f: %.0f %%;", when,
                 100 * at_time(rest.census_all_t, rest.census_all_on, when));

@@ -83,6 +83,7 @@
 #include "app/error_figure.hpp"
 #include "app/progress.hpp"
 #include "app/stopwatch.hpp"
+#include "app/text.hpp"
 #include "plot/figure.hpp"
 #include "sph/convergence.hpp"
 #include "sph/diagnostics.hpp"
@@ -586,11 +587,13 @@ TreeStudy step2_tree(const app::Chapter& chapter, const Parameters& par) {
                          : measure_tree(p, exact, par.theta, !par.monopole, direct);
   const TreeAccuracy& d = study.at_default;
   study.momentum = d.net_force;
-  std::printf(
-      "  default (theta = %.2f, %s): 99th percentile %.2e, maximum %.2e, %.0f interactions "
-      "a particle;\n  net force |sum m a| / sum m|a| = %.1e (direct summation: round-off)\n",
-      d.theta, d.quadrupole ? "quadrupoles" : "monopoles", d.p99, d.max, d.interactions,
-      study.momentum);
+  std::printf("%s\n", app::wrap(app::format("  default (theta = %.2f, %s): 99th percentile %.2e, "
+                                            "maximum %.2e, %.0f interactions a particle;",
+                                            d.theta, d.quadrupole ? "quadrupoles" : "monopoles",
+                                            d.p99, d.max, d.interactions))
+                          .c_str());
+  std::printf("  net force |sum m a| / sum m|a| = %.1e (direct summation: round-off)\n",
+              study.momentum);
   tree_accuracy_figure(chapter, study, par.particles, par.theta);
 
   // The cost against N.
@@ -1042,22 +1045,23 @@ Collapse step4_energies(const app::Chapter& chapter, const Parameters& par,
 
   const Extremes r = extremes(ref.t, ref.kinetic, ref.thermal, ref.potential);
   const Extremes own = extremes(ref.own_t, ref.own_kinetic, ref.own_thermal, ref.own_potential);
-  std::printf("    %-22s %13s %13s %14s %6s %6s %8s %8s\n", "", "max E_kin", "max E_th",
-              "min E_pot", "steps", "wall", "|dE/E|", "momentum");
-  std::printf("    %-22s %13s %13s %14s %6s %6s %8s %8s\n", "", "(at t)", "(at t)", "(at t)", "",
-              "s", "at end", "drift");
+  // (the table fits in 100 columns: names of at most 21 characters)
+  std::printf("  %-21s %13s %13s %14s %6s %6s %8s %8s\n", "", "max E_kin", "max E_th", "min E_pot",
+              "steps", "wall", "|dE/E|", "momentum");
+  std::printf("  %-21s %13s %13s %14s %6s %6s %8s %8s\n", "", "(at t)", "(at t)", "(at t)", "", "s",
+              "at end", "drift");
   const auto row = [](const std::string& name, const Extremes& x, long steps, double seconds,
                       double de, double drift) {
-    std::printf("    %-22s %6.4f %6.3f %6.4f %6.3f %7.4f %6.3f", name.c_str(), x.kinetic,
-                x.t_kinetic, x.thermal, x.t_thermal, x.potential, x.t_potential);
+    std::printf("  %-21s %6.4f %6.3f %6.4f %6.3f %7.4f %6.3f", name.substr(0, 21).c_str(),
+                x.kinetic, x.t_kinetic, x.thermal, x.t_thermal, x.potential, x.t_potential);
     if (steps > 0) std::printf(" %6ld %6.1f %8.1e %8.1e", steps, seconds, de, drift);
     std::printf("\n");
   };
-  row("reference (4000 shells)", r, 0, 0, 0, 0);
-  row("ours, 1D (" + std::to_string(par.quick ? 500 : 2000) + " shells)", own, 0, 0, 0, 0);
+  row("reference, 4000 shells", r, 0, 0, 0, 0);
+  row("ours, 1D, " + std::to_string(par.quick ? 500 : 2000) + " shells", own, 0, 0, 0, 0);
   for (const EvrardRun* run : {&c.runs[0], &c.runs[1], &c.runs[2], &c.fixed}) {
-    row(run->name, extremes(*run), run->steps, run->seconds, run->energy_error,
-        run->momentum_drift);
+    row(run == &c.fixed ? "std., fixed softening" : run->name, extremes(*run), run->steps,
+        run->seconds, run->energy_error, run->momentum_drift);
     if (!run->stopped.empty()) std::printf("      stopped: %s\n", run->stopped.c_str());
   }
   energy_figure(chapter, c.runs, c.fixed, ref, c.fixed_softening);
@@ -1224,8 +1228,8 @@ Profiles step5_profiles(const app::Chapter& chapter, const Collapse& c) {
   }
   result.own_vs_reference = sum / weight;
   std::printf(
-      "  our 1D Lagrangian code against the finite-volume profile: mean |d log10 rho| "
-      "%.1e away from the shock\n",
+      "  our 1D Lagrangian code against the finite-volume profile: mean |d log10 rho|\n"
+      "    %.1e away from the shock\n",
       result.own_vs_reference);
   std::printf("    %-10s %9s %9s %11s %9s %9s\n", "", "shock at", "width", "L1(log rho)", "L1(v)",
               "wall s");
@@ -1371,11 +1375,14 @@ Extreme step7_extreme(const Parameters& par, const Collapse& c) {
   x.cold_least_h = run.least_h;
   x.cold_steps = run.steps;
   x.cold_stopped = run.stopped;
-  std::printf(
-      "  cold collapse (u = 0.005, %d particles, standard viscosity) to t = %.3f: peak density "
-      "%.0f at t = %.3f,\n    least h %.2e, least dt %.2e (%s), %ld steps, %.1f s\n",
-      cold.particles, run.t.back(), run.peak_density, run.t_peak, run.least_h, run.least_dt,
-      run.least_dt_criterion.c_str(), run.steps, run.seconds);
+  std::printf("%s\n", app::wrap(app::format("  cold collapse (u = 0.005, %d particles, standard "
+                                            "viscosity) to t = %.3f: peak density %.0f at t = "
+                                            "%.3f, least h %.2e, least dt %.2e (%s), %ld "
+                                            "steps, %.1f s",
+                                            cold.particles, run.t.back(), run.peak_density,
+                                            run.t_peak, run.least_h, run.least_dt,
+                                            run.least_dt_criterion.c_str(), run.steps, run.seconds))
+                          .c_str());
   if (!run.stopped.empty()) std::printf("    stopped: %s\n", run.stopped.c_str());
 
   // Two particles closer than their softening length, and two at the same point.
@@ -1390,8 +1397,8 @@ Extreme step7_extreme(const Parameters& par, const Collapse& c) {
     const GravityField g = gravity_alone(par.tree(), same);
     x.coincident_zero = g.a[0].norm() == 0 && g.a[1].norm() == 0;
     std::printf(
-        "  two particles 0.1 h apart: |a| = %.6g (exact softened %.6g, Newton %.4g); relative "
-        "error + asymmetry %.1e;\n    at the same point: |a| = %g and %g\n",
+        "  two particles 0.1 h apart: |a| = %.6g (exact softened %.6g, Newton %.4g);\n"
+        "    relative error + asymmetry %.1e; at the same point: |a| = %g and %g\n",
         f.a[0].norm(), exact, 0.5 / (0.01 * 0.01), x.close_force_error, g.a[0].norm(),
         g.a[1].norm());
   }
@@ -1412,8 +1419,8 @@ Extreme step7_extreme(const Parameters& par, const Collapse& c) {
     const double newton = 1.0 * (1.0 - p.mass.back()) / 1e8;
     x.far_force_error = std::abs(tree.a.back().norm() / newton - 1);
     std::printf(
-        "  one of %zu particles at 10^4 R: the rest's force error 99th percentile %.2e, maximum "
-        "%.2e;\n    the far particle's |a| = %.6e against GM/r^2 = %.6e\n",
+        "  one of %zu particles at 10^4 R: the rest's force error 99th percentile %.2e,\n"
+        "    maximum %.2e; the far particle's |a| = %.6e against GM/r^2 = %.6e\n",
         p.size(), x.far_p99, x.far_max, tree.a.back().norm(), newton);
   }
   return x;

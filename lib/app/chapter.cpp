@@ -1,5 +1,7 @@
 #include "app/chapter.hpp"
 
+#include "app/text.hpp"
+
 #include <omp.h>
 
 #include <algorithm>
@@ -279,23 +281,26 @@ void Chapter::begin_claims(bool own_schemes) {
   *out_ << std::flush;
 }
 
+// One claim line, "  [tag] what", wrapped at 100 columns (continuation lines indented).
+void Chapter::print_claim(const std::string& tag, const std::string& what) {
+  *out_ << wrap("  [" + tag + "] " + what, 100, 6) << "\n" << std::flush;
+}
+
 bool Chapter::claim(bool ok, const std::string& what, bool always) {
   if (!own_schemes_ && !always) {
-    *out_ << "  [" << (ok ? "as claimed" : "not as claimed") << "] " << what << "\n" << std::flush;
+    print_claim(ok ? "as claimed" : "not as claimed", what);
     return ok;
   }
-  *out_ << "  [" << (ok ? "ok" : "FAILED") << "] " << what << "\n" << std::flush;
+  print_claim(ok ? "ok" : "FAILED", what);
   return check(ok, what);
 }
 
 bool Chapter::not_reproduced(bool holds, const std::string& what) {
   if (!own_schemes_) {
-    *out_ << "  [" << (holds ? "reproduced" : "not reproduced") << "] " << what << "\n"
-          << std::flush;
+    print_claim(holds ? "reproduced" : "not reproduced", what);
     return holds;
   }
-  *out_ << "  [" << (holds ? "FAILED: reproduces" : "not reproduced") << "] " << what << "\n"
-        << std::flush;
+  print_claim(holds ? "FAILED: reproduces" : "not reproduced", what);
   check(!holds, what + " (the chapter found it not to reproduce; it now does)");
   return holds;
 }

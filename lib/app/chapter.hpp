@@ -174,7 +174,7 @@ class Chapter {
   /// are reported, not checked.
   void begin_claims(bool own_schemes);
 
-  /// A claim of the chapter, printed on one line.  A check ("[ok]" or "[FAILED]", recorded as
+  /// A claim of the chapter, printed on one line (wrapped at 100 columns).  A check ("[ok]" or "[FAILED]", recorded as
   /// check() records it) when the run uses the chapter's own schemes (begin_claims) or when
   /// \p always -- a claim that must hold whatever the options, such as conservation; otherwise
   /// only reported, "[as claimed]" or "[not as claimed]", and it cannot fail the run.
@@ -200,6 +200,7 @@ class Chapter {
   void set_streams(std::ostream& out, std::ostream& err);
 
  private:
+  void print_claim(const std::string& tag, const std::string& what);
   void write_summary() const;
   static void require_dashes(const std::string& flag);
 
