@@ -27,7 +27,8 @@
 /// \section ch01_m4 The M4 cubic spline
 ///
 /// Both papers of this course use the M4 kernel of Monaghan & Lattanzio (1985)
-/// (Selhammar eq 3, Watkins eqs A2-A3).  With \f$ q = r/h \f$ it is
+/// (\ref papers_selhammar_eq3 "Selhammar eq 3", \ref papers_watkins_eqA2 "Watkins eqs A2-A3"
+/// in our reading notes).  With \f$ q = r/h \f$ it is
 /// \f[ W(r, h) = \frac{\sigma_D}{h^D}\, w(q), \qquad
 ///     w(q) = \begin{cases} 1 - \frac32 q^2 + \frac34 q^3, & 0 \le q < 1,
 ///                          \\ \frac14 (2 - q)^3, & 1 \le q < 2, \\ 0, & q \ge 2. \end{cases} \f]

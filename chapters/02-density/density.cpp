@@ -11,7 +11,9 @@
 ///     \qquad\text{(pair-averaged; Selhammar 1997 eqs 1, 5)}, \f]
 /// where the sum includes the particle itself (the *self term* \f$ m_i W(0, h_i) \f$) unless we
 /// say otherwise.  With one h and one mass for all particles, as in this chapter, the two forms
-/// are the same number.
+/// are the same number.  (Our reading notes on these equations: \ref papers_watkins_eqA1
+/// "Watkins eq A1", \ref papers_selhammar_eq1 "Selhammar eqs 1-2" and
+/// \ref papers_selhammar_eq5 "eq 5".)
 ///
 /// Three pieces of machinery make the sum affordable and well defined, and they are the new
 /// library code of this chapter:
@@ -89,6 +91,7 @@ struct Setup {
 /// \f[ m N_{\rm kernel} = \tfrac43 \pi (2h)^3 \rho \quad\Longrightarrow\quad
 ///     h = \left(\frac{3 m N_{\rm kernel}}{32 \pi \rho}\right)^{1/3}
 ///     \qquad\text{(eqs A5-A6)}. \f]
+/// (\ref papers_watkins_eqA5 "our reading of eqs A5-A7").
 /// So their h is the same as ours and Selhammar's -- half the support radius -- and
 /// \f$ N_{\rm kernel} \f$ is the *expected* number of particles within \f$ 2h \f$.  For 5000
 /// particles of mass \f$ 1/5000 \f$ in the unit box and \f$ N_{\rm kernel} = 60 \f$ this gives

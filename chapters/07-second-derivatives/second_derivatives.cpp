@@ -33,6 +33,10 @@
 ///  - **Watkins et al. (1996)**: eqs 4-6 applied twice (lib/sph/derivatives/watkins_1996.hpp),
 ///    and -- to isolate their one change -- the same two passes with the standard weights.
 ///
+/// Our reading notes on the equations used here: \ref papers_watkins_eq2 "eq 2" (the viscous
+/// force), \ref papers_watkins_eq4 "eqs 4-6" (the operators), \ref papers_watkins_eq7
+/// "eqs 7-8" (varying coefficients) and \ref papers_watkins_sect3 "the static tests of sect. 3".
+///
 /// What is new in the library: a frozen particle set and its pair loop
 /// (lib/sph/derivatives/particle_set.hpp), the three methods above, the particle sets of the
 /// static tests (lib/sph/setups/watkins_static.hpp, shared with chapter 2), and the
