@@ -289,7 +289,8 @@ void number_figures(Chapter& chapter) {
 }
 
 /// Replaces each "\figref{file.png}" in \p line by a link "Fig. N.k" to that figure of the
-/// chapter (numbered by number_figures); an unknown file is a warning.
+/// chapter (numbered by number_figures); an unknown file is a warning.  A figure named as code,
+/// "`file.png`", keeps its name and gains the link after it, when the chapter shows it.
 std::string cite_figures(const Chapter& chapter, const std::string& line,
                          const std::string& where) {
   static const std::regex figref(R"re(\\figref\{([^}]+)\})re");
@@ -308,7 +309,21 @@ std::string cite_figures(const Chapter& chapter, const std::string& line,
     }
     rest = match.suffix().str();
   }
-  return out + rest;
+  out += rest;
+
+  static const std::regex named(R"re(`([A-Za-z0-9_.-]+\.png)`)re");
+  std::string linked;
+  rest = out;
+  while (std::regex_search(rest, match, named)) {
+    linked += match.prefix().str() + match.str();
+    const auto found = chapter.figures.find(match[1].str());
+    if (found != chapter.figures.end()) {
+      linked += " (\\ref " + figure_anchor(chapter, found->second) + " \"Fig. " +
+                chapter_number(chapter) + "." + std::to_string(found->second) + "\")";
+    }
+    rest = match.suffix().str();
+  }
+  return linked + rest;
 }
 
 /// Rewrites the figure references of results.md: "\image html fig.png ..." and Markdown
