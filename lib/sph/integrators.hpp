@@ -30,9 +30,32 @@ namespace sph {
 /// \f$ \mathbf v^{n+1/2} + \tfrac12\delta t\,\mathbf a^{n} \f$, as in GADGET-2 and SWIFT.  For
 /// forces that depend on positions only it is symplectic: energy errors stay bounded, and a
 /// central force conserves angular momentum to round-off.
+///
+/// <b>Terms that change v at a kick</b> (`with_kick`, such as the exact relaxation of
+/// Selhammar's collective term) take kinetic energy and give it to u exactly, particle by
+/// particle.  Two other works are then left unpaired, each of first order in the step, unless
+/// the leapfrog pays them:
+///  - the pair forces' heating \f$ \dot u_i \f$ was computed at the last evaluation with the
+///    velocities before the terms changed them by \f$ \delta\mathbf v_i \f$ at the closing kick;
+///    the kinetic energy the same forces give at the next opening kick counts the velocity
+///    after.  The difference, \f$ m_i\,\delta\mathbf v_i\cdot\mathbf a^{\rm hydro}_i\,\delta t/2 \f$
+///    summed over the particles, is what the pair forces' own energy equation
+///    (\f$ \sum_i m_i \dot u_i = -\sum_i m_i \mathbf v_i\cdot\mathbf a^{\rm hydro}_i \f$) did not
+///    see; it is taken from \f$ u_i \f$.
+///  - gravity and the external potential gave kinetic energy at the opening kick to the velocity
+///    that the terms then change by \f$ \delta\mathbf v'_i \f$, before the drift; the potential
+///    energy changes with the velocity after the change.  Their work on the change,
+///    \f$ m_i\,\delta\mathbf v'_i\cdot\mathbf a^{\rm body}_i\,\delta t/2 \f$, is given to
+///    \f$ u_i \f$.
+/// With both paid (`work_of_term_kicks`, the default) the total energy is conserved to the
+/// leapfrog's second order again; without them (the form of earlier versions, kept to show the
+/// difference) the error is of first order in the step.  The predictor-corrector does not pay
+/// them: no scene pairs it with a term that changes v at a kick.
 template <int D>
 struct Leapfrog {
   static constexpr const char* name = "kick-drift-kick leapfrog (Selhammar eq 8)";
+  /// Pay the works left unpaired by terms that change v at a kick (see above).
+  bool work_of_term_kicks = true;
 
   template <class Sim>
   void step(Sim& sim, double dt) {
@@ -42,6 +65,7 @@ struct Leapfrog {
     const std::size_t n = p.size();
     velocity_half_.resize(n);
     if constexpr (energy) energy_half_.resize(n);
+    if constexpr (energy && Sim::kicks_terms) changed_.resize(n, Vec<D>::Zero());
       // The first half kick to v^{n+1/2} (kept in velocity_half_), the drift, and the prediction
       // v^{n+1/2} + a^n dt/2 that the forces at the end of the step see (left in p.velocity);
       // the same for u.  One pass over the particles.
@@ -58,7 +82,16 @@ struct Leapfrog {
         const double half_heat = 0.5 * dt * p.energy_rate[i];
         energy_half_[i] = p.internal_energy[i] + half_heat;
         if constexpr (Sim::kicks_terms) {
+          const Vec<D> kicked = velocity_half_[i];
           sim.kicked(i, 0.5 * dt, p.velocity[i], velocity_half_[i], energy_half_[i]);
+          if (work_of_term_kicks) {
+            // (see the class note) the pair forces' work on what the terms changed v by at the
+            // last closing kick, and the body forces' work on what they change it by now
+            const Vec<D>& hydro = sim.hydro_acceleration(i);
+            energy_half_[i] += 0.5 * dt *
+                               ((velocity_half_[i] - kicked).dot(p.acceleration[i] - hydro) -
+                                changed_[i].dot(hydro));
+          }
         }
         p.internal_energy[i] = energy_half_[i] + half_heat;
       } else if constexpr (Sim::kicks_terms) {
@@ -81,7 +114,9 @@ struct Leapfrog {
       if constexpr (energy) p.internal_energy[i] += 0.5 * dt * p.energy_rate[i];
       if constexpr (Sim::kicks_terms) {
         double no_energy = 0;
+        const Vec<D> kicked = p.velocity[i];
         sim.kicked(i, 0.5 * dt, before, p.velocity[i], energy ? p.internal_energy[i] : no_energy);
+        if constexpr (energy) changed_[i] = p.velocity[i] - kicked;
       }
     }
   }
@@ -89,6 +124,7 @@ struct Leapfrog {
  private:
   std::vector<Vec<D>> velocity_half_;  // v at the half step while the forces see the prediction
   std::vector<double> energy_half_;    // u likewise
+  std::vector<Vec<D>> changed_;        // what the terms changed v by at the last closing kick
 };
 
 /// A second-order predictor-corrector: the midpoint method, with one evaluation per step.

@@ -130,6 +130,7 @@ class Simulation {
       compute_forces<D, K, TermList, evolve_energy>(particles_, search_.list(), view(), terms_,
                                                     fields_);
       if constexpr (TermList::template any_after_force<D>) after_force();
+      if constexpr (keeps_hydro_acceleration) hydro_acceleration_ = particles_.acceleration;
     } else {
       std::fill(particles_.acceleration.begin(), particles_.acceleration.end(), Vec<D>::Zero());
     }
@@ -257,6 +258,18 @@ class Simulation {
   }
   /// Whether any term acts on the kicks (integrators call kicked() only then).
   static constexpr bool kicks_terms = TermList::template any_with_kick<D>;
+  /// The acceleration of particle i by the force pass alone (the pair forces and the terms,
+  /// without gravity and the external potential), at the last evaluation.  The leapfrog needs
+  /// it when a term changes v at a kick: the pair forces' heating was computed with the
+  /// velocities before that change, and the work they do on the change is owed to u (see
+  /// Leapfrog).  Kept as a copy only in scenes whose terms act on kicks and that also have
+  /// gravity or an external potential; otherwise it is the particle's acceleration.
+  const Vec<D>& hydro_acceleration(std::size_t i) const {
+    if constexpr (keeps_hydro_acceleration)
+      return hydro_acceleration_[i];
+    else
+      return particles_.acceleration[i];
+  }
   /// After particle i was kicked by dt from velocity v_before to v: the terms' own updates of
   /// v and u (u is a dummy when the gas does not evolve it).
   void kicked(std::size_t i, double dt, const Vec<D>& v_before, Vec<D>& v, double& u) {
@@ -468,6 +481,9 @@ class Simulation {
   DerivedFields<D> fields_;
   PositionArrays<D> positions_;   // the positions one array per axis, for the pair loops
   PositionArrays<D> velocities_;  // the velocities likewise
+  static constexpr bool keeps_hydro_acceleration =
+      hydro && TermList::template any_with_kick<D> && (Gravity::active || External::active);
+  std::vector<Vec<D>> hydro_acceleration_;  // see hydro_acceleration()
   double time_ = 0;
   long steps_ = 0;
   TimestepLimit last_limit_;
