@@ -18,6 +18,10 @@
 /// app::save_error_figure(study, output / "sod_error_vs_time.png", options);
 /// \endcode
 ///
+/// A study can be drawn beside numbers it did not measure, another code's quoted measurements:
+/// ErrorFigureOptions::quoted adds them as hollow markers joined by a dotted line, with a legend
+/// that says they are quoted.
+///
 /// Header-only: a chapter that includes it links sph_plot.
 
 #include "plot/error.hpp"
@@ -28,10 +32,21 @@
 #include <algorithm>
 #include <cctype>
 #include <cstdio>
+#include <map>
+#include <optional>
 #include <string>
 #include <vector>
 
 namespace app {
+
+/// Points measured elsewhere and quoted: the wall times and, per quantity of the study
+/// ("L1(rho)", ...), the errors at those times.  A quantity it does not name is not drawn.
+struct QuotedPoints {
+  std::string label;  ///< legend text (plain or markup), e.g. "other code, h = dx (quoted)"
+  std::vector<double> seconds;
+  std::map<std::string, std::vector<double>> error;  ///< by quantity, one per entry of seconds
+  std::optional<plot::Color> color{};                ///< default: black, grey, black, ...
+};
 
 /// How the error figure looks.
 struct ErrorFigureOptions {
@@ -41,6 +56,8 @@ struct ErrorFigureOptions {
   int columns = 3;                        ///< panels per row, at most (rows are balanced)
   int width = 0;                          ///< pixels; 0: the figure engine's default per panel
   int height = 0;
+  std::vector<QuotedPoints> quoted{};              ///< drawn beside the study's own runs
+  std::string time_label = "wall-clock time [s]";  ///< the x axis of every panel
 };
 
 namespace error_figure_detail {
@@ -129,11 +146,13 @@ inline std::string legend_label(const sph::ErrorVsTime& study, const std::string
   return label;
 }
 
-/// Draw one quantity's panel: one line per method through its (time, error) points.
-inline void draw_panel(plot::Axes& axes, const sph::ErrorVsTime& study,
-                       const std::string& quantity) {
+/// Draw one quantity's panel: one line per method through its (time, error) points, then the
+/// quoted points that have this quantity.
+inline void draw_panel(plot::Axes& axes, const sph::ErrorVsTime& study, const std::string& quantity,
+                       const std::vector<QuotedPoints>& quoted = {},
+                       const std::string& time_label = "wall-clock time [s]") {
   axes.xscale(plot::Scale::log).yscale(plot::Scale::log);
-  axes.xlabel("wall-clock time [s]").ylabel(quantity_markup(quantity));
+  axes.xlabel(time_label).ylabel(quantity_markup(quantity));
   const std::vector<std::string> methods = study.methods();
   for (std::size_t k = 0; k < methods.size(); ++k) {
     // Keep the points a log-log plot can show.
@@ -152,6 +171,22 @@ inline void draw_panel(plot::Axes& axes, const sph::ErrorVsTime& study,
                .width = 1.6,
                .marker = marker_of(k),
                .marker_size = 8.0});
+  }
+  for (std::size_t k = 0; k < quoted.size(); ++k) {
+    const auto it = quoted[k].error.find(quantity);
+    if (it == quoted[k].error.end()) continue;
+    sph::require(it->second.size() == quoted[k].seconds.size(),
+                 "error figure: the quoted points '" + quoted[k].label + "' have " +
+                     std::to_string(it->second.size()) + " errors of " + quantity + " for " +
+                     std::to_string(quoted[k].seconds.size()) + " times");
+    axes.line(quoted[k].seconds, it->second,
+              {.label = as_markup(quoted[k].label),
+               .color = quoted[k].color.value_or(k % 2 ? plot::grey : plot::black),
+               .style = plot::Dash::dotted,
+               .width = 1.2,
+               .marker = marker_of(methods.size() + k),
+               .marker_size = 11.0,
+               .marker_filled = false});
   }
   axes.legend(plot::Corner::best);  // the corner that covers the fewest points
 }
@@ -182,7 +217,8 @@ inline plot::Figure error_figure(const sph::ErrorVsTime& study,
   figure.stamp(options.stamp);
   // One panel per quantity; unused cells of the last row stay empty.
   for (int k = 0; k < count; ++k)
-    error_figure_detail::draw_panel(figure.panel(k), study, quantities[k]);
+    error_figure_detail::draw_panel(figure.panel(k), study, quantities[k], options.quoted,
+                                    options.time_label);
   return figure;
 }
 

@@ -22,7 +22,18 @@
 /// \endcode
 ///
 /// The wall time is that of the integration alone.  Building the tube -- in 2D and 3D that
-/// includes settling each side to a glass -- is not part of what a scheme costs.
+/// includes settling each side to a glass -- is not part of what a scheme costs.  (The whole
+/// run, building included, is TubeRun::total_seconds.)
+///
+/// **Only where the exact solution applies.**  The runner refuses an end time past the one
+/// until which the exact solution describes the measured window (sph::exact_solution_validity):
+/// with walls, when the fastest wave reaches a wall; in a periodic tube, when the waves of the
+/// far interface at \f$ x = \pm L \f$ reach the window or meet the waves from the centre.  The
+/// message names that time and the time the fastest wave reaches the tube's end.  A tube whose
+/// two gases move (a boosted tube) is compared in the frame that moves with the mean of their
+/// velocities: the particles are returned shifted back by \f$ v_f t \f$ (wrapped into the tube)
+/// with \f$ v_f \f$ taken off their velocities, and the exact solution is that of the tube at
+/// rest in that frame.  The two are then compared exactly as for a tube at rest.
 ///
 /// declare_tube_states makes the tube's two states options of a chapter, so that a reader can
 /// run any Riemann problem through the same program.
@@ -37,6 +48,7 @@
 #include "sph/simulation.hpp"
 
 #include <cmath>
+#include <ctime>
 #include <string>
 
 namespace app {
@@ -50,8 +62,10 @@ enum class RunReport {
 
 /// How a shock tube is integrated and reported.
 struct TubeRunOptions {
-  double t_end = 0.2;                ///< the run stops at this time
-  double courant = 0.3;              ///< \f$ \varepsilon \f$ of Selhammar's eq 7
+  double t_end = 0.2;    ///< the run stops at this time
+  double courant = 0.3;  ///< \f$ \varepsilon \f$ of the time step
+  /// Selhammar's eq 7 or the signal velocity of Monaghan (1997) (sph::Settings)
+  sph::Settings::TimestepRule timestep_rule = sph::Settings::TimestepRule::selhammar_eq7;
   std::string label = "shock tube";  ///< names the run in the progress line and TubeRun::name
   RunReport report = RunReport::live;
 };
@@ -65,7 +79,12 @@ struct TubeRun {
   int in_window = 0;            ///< particles in the window \f$ |x| \le 0.5 \f$ at t = 0
   long steps = 0;               ///< time steps taken
   double seconds = 0;           ///< wall time of the integration
-  double energy_change = 0;     ///< \f$ |E(t) - E(0)|/E(0) \f$, E kinetic plus thermal
+  double total_seconds = 0;     ///< wall time of the whole run: building the tube and integrating
+  /// CPU time of the process over the whole run (all its threads): on one thread of a quiet
+  /// machine the same as total_seconds, on a loaded one without the time others took
+  double cpu_seconds = 0;
+  double frame_velocity = 0;  ///< the frame the run is compared in (see the file comment)
+  double energy_change = 0;   ///< \f$ |E(t) - E(0)|/E(0) \f$, E kinetic plus thermal
   /// \f$ |\mathbf P(t) - \mathbf P(0)| / \sum_i m_i|\mathbf v_i(t)| \f$, see sph::momentum_scale
   double momentum_drift = 0;
   std::string limit;  ///< what limited the last full time step, e.g. "Courant (eq 7)"
@@ -82,10 +101,18 @@ TubeRun<Scene::D> run_shock_tube(const sph::ShockTubeSetup& setup,
                                  const typename Scene::Terms& terms,
                                  const TubeRunOptions& options = {}) {
   constexpr int D = Scene::D;
+  const Stopwatch whole_run;
+  const std::clock_t cpu_start = std::clock();
+  const sph::ExactValidity validity = sph::exact_solution_validity(setup);
+  if (!(options.t_end <= validity.until)) {
+    throw sph::Error("shock tube: no exact solution to compare with at t = " +
+                     sph::show(options.t_end) + " (lower the end time): " + validity.reason);
+  }
   const sph::ShockTube<D> tube = sph::make_shock_tube<D, typename Scene::Kernel>(setup, rule);
   TubeRun<D> run;
   run.name = options.label;
   run.exact = tube.exact;
+  run.frame_velocity = validity.frame_velocity;
   const sph::Selection window = sph::shock_tube_window();
   for (std::size_t i = 0; i < tube.particles.size(); ++i) {
     run.in_window += window.contains<D>(i, tube.particles.position[i]);
@@ -94,6 +121,7 @@ TubeRun<Scene::D> run_shock_tube(const sph::ShockTubeSetup& setup,
   sph::Settings settings;
   settings.smoothing = rule;
   settings.courant = options.courant;
+  settings.timestep_rule = options.timestep_rule;
   const Stopwatch clock;
   sph::Simulation<Scene> sim(tube.particles, tube.box, sph::IdealGas(setup.gamma), terms, settings);
   const auto energy = [](const sph::Particles<D>& p) {
@@ -119,6 +147,21 @@ TubeRun<Scene::D> run_shock_tube(const sph::ShockTubeSetup& setup,
   run.energy_change = std::abs(energy(run.particles) - energy_before) / energy_before;
   const sph::Vec<D> momentum_change = sph::total_momentum(run.particles) - momentum_before;
   run.momentum_drift = momentum_change.norm() / sph::momentum_scale(run.particles);
+  if (run.frame_velocity != 0) {
+    // Into the frame moving with v_f: positions back by v_f t, velocities less v_f.
+    const double shift = run.frame_velocity * options.t_end;
+    for (std::size_t i = 0; i < run.particles.size(); ++i) {
+      run.particles.position[i][0] -= shift;
+      run.particles.position[i] = tube.box.wrap(run.particles.position[i]);
+      run.particles.velocity[i][0] -= run.frame_velocity;
+    }
+    sph::GasState left = setup.left, right = setup.right;
+    left.velocity -= run.frame_velocity;
+    right.velocity -= run.frame_velocity;
+    run.exact = sph::RiemannSolution(left, right, setup.gamma);
+  }
+  run.total_seconds = whole_run.seconds();
+  run.cpu_seconds = static_cast<double>(std::clock() - cpu_start) / CLOCKS_PER_SEC;
   return run;
 }
 

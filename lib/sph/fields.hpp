@@ -52,7 +52,8 @@ struct DerivedFields {
       p_over_rho2;  ///< \f$ P_i/\rho_i^2 \f$ (equation-of-state pass), for the pressure terms
   std::vector<double>
       max_mu;  ///< \f$ \max_j |\mu_{ij}| \f$ (force pass), for the time step of eq 7
-  std::vector<double> density_rate;         ///< \f$ \dot\rho_i \f$ (density pass)
+  std::vector<double> max_signal;    ///< \f$ \max_j v_{\rm sig,ij} \f$ (force pass), Monaghan 1997
+  std::vector<double> density_rate;  ///< \f$ \dot\rho_i \f$ (density pass)
   std::vector<double> velocity_divergence;  ///< \f$ (\nabla\cdot\mathbf v)_i \f$ (density pass)
   std::array<std::vector<double>, curl_components<D>>
       velocity_curl;  ///< per component (density pass)

@@ -71,9 +71,11 @@ inline Pair<D> pair_geometry(const ParticleView<D>& in, std::size_t i, const Nei
 /// compiler keeps them in registers across the SIMD lanes.)
 struct NoPairAcceleration {};
 struct NoHeatingFactor {};
+struct NoSignalVelocity {};
 /// What one pair contributes in the force pass: the central factor, the non-central
-/// acceleration and heating (present only if a term has them) and \f$ |\mu_{ij}| \f$.
-template <bool with_extra, bool with_heating>
+/// acceleration and heating (present only if a term has them), \f$ |\mu_{ij}| \f$ and, with the
+/// signal-velocity time step, the pair's signal speed.
+template <bool with_extra, bool with_heating, bool with_signal = false>
 struct PairForce {
   double f, rv, mu;
   double r_ij[3];  // the first D are used
@@ -81,15 +83,21 @@ struct PairForce {
   [[no_unique_address]] std::conditional_t<with_extra, PairAcceleration, NoPairAcceleration> extra;
   /// \f$ m_j H_{ij} g \f$ when a term says who is heated (else \f$ \tfrac12 f \f$ is used; no storage).
   [[no_unique_address]] std::conditional_t<with_heating, double, NoHeatingFactor> f_heat;
+  /// \f$ v_{\rm sig,ij} \f$ of Monaghan (1997) when the time step asks for it (else no storage).
+  [[no_unique_address]] std::conditional_t<with_signal, double, NoSignalVelocity> signal;
 };
 
 /// The force between particle i and one neighbour: the geometry, then every term of the scene.
-template <int D, class K, class TermList>
+/// With \p with_signal, also the pair's signal velocity of Monaghan (1997),
+/// \f$ v_{\rm sig,ij} = c_i + c_j - \beta_{\rm sig}\, w_{ij} \f$ with
+/// \f$ w_{ij} = \mathbf v_{ij}\cdot\hat{\mathbf r}_{ij} \f$ for an approaching pair and 0 for a
+/// receding one (zero outside the kernel's support at \f$ \bar h_{ij} \f$).
+template <int D, class K, class TermList, bool with_signal = false>
 inline auto pair_force(const ParticleView<D>& in, const TermList& terms, std::size_t i,
-                       const Neighbour& nb) {
+                       const Neighbour& nb, double signal_beta = 0.0) {
   const Pair<D> pr = pair_geometry<D, K>(in, i, nb);
   constexpr bool heating = TermList::template any_heating<D>;
-  PairForce<TermList::template any_pair_acceleration<D>, heating> out;
+  PairForce<TermList::template any_pair_acceleration<D>, heating, with_signal> out;
   const Bracket bracket = bracket_of<D>(terms, pr, in);
   // Equal and opposite: the factor m_j * bracket * g multiplies the antisymmetric r_ij.
   out.f = in.m[pr.j] * bracket.value * pr.gradient_factor;
@@ -100,29 +108,39 @@ inline auto pair_force(const ParticleView<D>& in, const TermList& terms, std::si
   for (int a = 0; a < D; ++a) out.r_ij[a] = pr.r_ij[a];
   if constexpr (TermList::template any_pair_acceleration<D>)
     out.extra = pair_acceleration_of<D>(terms, pr, in);
+  if constexpr (with_signal) {
+    // (rv < 0 implies r > 0; the branches are selects, the loop stays vectorised)
+    const double w = pr.rv < 0 ? pr.rv / pr.r : 0.0;
+    out.signal = pr.r2 < pr.support2 ? in.c[i] + in.c[pr.j] - signal_beta * w : 0.0;
+  }
   return out;
 }
 
-/// The force pass.  Writes p.acceleration, p.energy_rate (when the gas evolves its energy)
-/// and, when a term tracks it, fields.max_mu.  Reads what `in` points at: density, pressure,
-/// sound speed, P/rho^2, positions and velocities one array per axis.
-template <int D, class K, class TermList, bool evolve_energy>
+/// The force pass.  Writes p.acceleration, p.energy_rate (when the gas evolves its energy),
+/// when a term tracks it fields.max_mu, and with \p track_signal fields.max_signal, the largest
+/// signal velocity of Monaghan (1997) over each particle's pairs (with \p signal_beta as its
+/// \f$ \beta \f$).  Reads what `in` points at: density, pressure, sound speed, P/rho^2,
+/// positions and velocities one array per axis.  Without \p track_signal the loop has no trace
+/// of the signal velocity (the time step of eq 7 does not need it).
+template <int D, class K, class TermList, bool evolve_energy, bool track_signal = false>
 void compute_forces(Particles<D>& p, const NeighbourList<D>& list, const ParticleView<D>& in,
-                    const TermList& terms, DerivedFields<D>& fields) {
+                    const TermList& terms, DerivedFields<D>& fields, double signal_beta = 0.0) {
   const std::size_t n = p.size();
   constexpr bool tracks_mu = TermList::tracks_mu;
   constexpr bool extra = TermList::template any_pair_acceleration<D>;
   if constexpr (tracks_mu) fields.max_mu.resize(n);
+  if constexpr (track_signal) fields.max_signal.resize(n);
 #pragma omp parallel for schedule(dynamic, 512) if (n >= parallel_threshold)
   for (std::size_t i = 0; i < n; ++i) {
     const ParticleView<D> local = in;  // a private copy: its pointers stay in registers
     const std::span<const Neighbour> nb = list.of(i);
     const auto count = static_cast<std::ptrdiff_t>(nb.size());
-    double a0 = 0, a1 = 0, a2 = 0, energy_rate = 0, max_mu = 0;
+    double a0 = 0, a1 = 0, a2 = 0, energy_rate = 0, max_mu = 0, max_signal = 0;
 #pragma omp simd simdlen(8) if(simd : D > 1) reduction(+ : a0, a1, a2, energy_rate) \
-    reduction(max : max_mu)
+    reduction(max : max_mu, max_signal)
     for (std::ptrdiff_t k = 0; k < count; ++k) {
-      const auto pf = pair_force<D, K>(local, terms, i, nb[static_cast<std::size_t>(k)]);
+      const auto pf = pair_force<D, K, TermList, track_signal>(
+          local, terms, i, nb[static_cast<std::size_t>(k)], signal_beta);
       a0 -= pf.f * pf.r_ij[0];
       if constexpr (D > 1) a1 -= pf.f * pf.r_ij[1];
       if constexpr (D > 2) a2 -= pf.f * pf.r_ij[2];
@@ -140,11 +158,13 @@ void compute_forces(Particles<D>& p, const NeighbourList<D>& list, const Particl
         if constexpr (evolve_energy) energy_rate += pf.extra.heat;
       }
       if constexpr (tracks_mu) max_mu = std::max(max_mu, pf.mu);
+      if constexpr (track_signal) max_signal = std::max(max_signal, pf.signal);
     }
     const double acc[3] = {a0, a1, a2};
     for (int a = 0; a < D; ++a) p.acceleration[i][a] = acc[a];
     if constexpr (evolve_energy) p.energy_rate[i] = energy_rate;
     if constexpr (tracks_mu) fields.max_mu[i] = max_mu;
+    if constexpr (track_signal) fields.max_signal[i] = max_signal;
   }
 }
 

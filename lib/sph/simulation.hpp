@@ -25,10 +25,16 @@
 /// \f$ \varepsilon\sqrt{h_i/|\mathbf a_i|} \f$; a cooling limit
 /// \f$ \varepsilon\, u_i/|\dot u_i| \f$ where \f$ \dot u_i < 0 \f$; each term's own limit; and the
 /// external potential's.  As printed, eq 7 uses the particle's own speed
-/// \f$ |\mathbf v_i| \f$, so the step depends on the frame of reference; the signal-velocity
-/// alternative leaves it out (only relative velocities, through \f$ \mu \f$, enter).  A scene may
-/// also fix the step (Watkins et al. integrate with a constant one).  The limiting criterion and
-/// particle of the last step are reported.
+/// \f$ |\mathbf v_i| \f$, so the step depends on the frame of reference.  The alternative a
+/// scene may choose (Settings::TimestepRule::signal_velocity) is the signal velocity of
+/// Monaghan (1997), which sees only relative velocities and is Galilean invariant:
+/// \f[ \delta t = \varepsilon \min_i \frac{h_i}{\max_j v_{{\rm sig},ij}}, \qquad
+///     v_{{\rm sig},ij} = c_i + c_j - \beta_{\rm sig}\, w_{ij}, \qquad
+///     w_{ij} = \min(\mathbf v_{ij}\cdot\hat{\mathbf r}_{ij}, 0), \f]
+/// the maximum over the pairs within the kernel's support (and the particle itself, \f$ 2c_i \f$),
+/// kept by the force pass; the terms' signal speeds, which are their shares of eq 7, do not enter
+/// it (their own limits do).  A scene may also fix the step (Watkins et al. integrate with a
+/// constant one).  The limiting criterion and particle of the last step are reported.
 
 #include "sph/box.hpp"
 #include "sph/density.hpp"
@@ -50,9 +56,11 @@ namespace sph {
 
 /// The run-time settings of a scene.
 struct Settings {
+  /// Selhammar's eq 7, or the pair signal velocity of Monaghan (1997) (see the file comment).
   enum class TimestepRule { selhammar_eq7, signal_velocity };
-  double courant = 0.3;  ///< epsilon of Selhammar eq 7
+  double courant = 0.3;  ///< epsilon of Selhammar eq 7 (or of the signal-velocity rule)
   TimestepRule timestep_rule = TimestepRule::selhammar_eq7;
+  double signal_beta = 2.0;  ///< \f$ \beta_{\rm sig} \f$ of the signal-velocity rule
   SmoothingLengthRule smoothing = SmoothingLengthRule::neighbour_number(64);
   DensityForm density = DensityForm::selhammar();
   double fixed_timestep = 0;    ///< a constant step (Watkins et al.); 0: the limits decide
@@ -62,8 +70,8 @@ struct Settings {
 
 /// Which criterion set the last time step, and where.
 struct TimestepLimit {
-  /// "Courant (eq 7)", "acceleration", "cooling", a term's or a potential's name, "output time",
-  /// "fixed step"
+  /// "Courant (eq 7)", "signal velocity", "acceleration", "cooling", a term's or a potential's
+  /// name, "output time", "fixed step"
   std::string criterion;
   std::size_t particle = 0;
   double dt = 0;
@@ -104,6 +112,8 @@ class Simulation {
             "simulation: the Courant factor must lie in (0, 1)");
     require(std::isfinite(settings_.fixed_timestep) && settings_.fixed_timestep >= 0,
             "simulation: the fixed time step must be positive (or 0 for the adaptive step)");
+    require(std::isfinite(settings_.signal_beta) && settings_.signal_beta >= 0,
+            "simulation: the signal velocity's beta must be non-negative");
     box_.validate();
     particles_.validate();
     boundaries_.validate(particles_);
@@ -127,8 +137,13 @@ class Simulation {
       density_pass();
       if constexpr (TermList::template any_gradient_pass<D>) gradient_pass();
       if constexpr (TermList::template any_before_force<D>) before_force();
-      compute_forces<D, K, TermList, evolve_energy>(particles_, search_.list(), view(), terms_,
-                                                    fields_);
+      if (pair_signal()) {
+        compute_forces<D, K, TermList, evolve_energy, true>(particles_, search_.list(), view(),
+                                                            terms_, fields_, settings_.signal_beta);
+      } else {
+        compute_forces<D, K, TermList, evolve_energy>(particles_, search_.list(), view(), terms_,
+                                                      fields_);
+      }
       if constexpr (TermList::template any_after_force<D>) after_force();
       if constexpr (keeps_hydro_acceleration) hydro_acceleration_ = particles_.acceleration;
     } else {
@@ -156,7 +171,7 @@ class Simulation {
     std::vector<Best> best((n + chunk - 1) / chunk);
     const ParticleView<D> in = view();
     const double courant = settings_.courant;
-    const bool own_speed = settings_.timestep_rule == Settings::TimestepRule::selhammar_eq7;
+    const bool pair_signal = this->pair_signal();
 #pragma omp parallel for schedule(static) if (n >= parallel_threshold)
     for (std::size_t c = 0; c < best.size(); ++c) {
       Best b;
@@ -167,13 +182,18 @@ class Simulation {
         if (!moves(i)) continue;
         if constexpr (hydro) {
           const double h = p.smoothing_length[i];
-          double signal = p.sound_speed[i];
-          terms_.for_each([&](const auto& t) {
-            if constexpr (HasSignalSpeed<std::decay_t<decltype(t)>, D>)
-              signal += t.signal_speed(i, in);
-          });
-          if (own_speed) signal += p.velocity[i].norm();
-          if (signal > 0) consider(courant * h / signal, i, "Courant (eq 7)");
+          if (pair_signal) {
+            const double signal = std::max(fields_.max_signal[i], 2.0 * p.sound_speed[i]);
+            if (signal > 0) consider(courant * h / signal, i, "signal velocity");
+          } else {
+            double signal = p.sound_speed[i];
+            terms_.for_each([&](const auto& t) {
+              if constexpr (HasSignalSpeed<std::decay_t<decltype(t)>, D>)
+                signal += t.signal_speed(i, in);
+            });
+            signal += p.velocity[i].norm();
+            if (signal > 0) consider(courant * h / signal, i, "Courant (eq 7)");
+          }
           const double a = p.acceleration[i].norm();
           if (a > 0) consider(courant * std::sqrt(h / a), i, "acceleration");
           // Cooling: an explicit step must not remove more than a fraction of u (without it,
@@ -333,6 +353,11 @@ class Simulation {
   const TimestepLimit& last_limit() const { return last_limit_; }
 
  private:
+  // Whether the time step is the signal-velocity rule, whose pair maximum the force pass keeps.
+  bool pair_signal() const {
+    return settings_.timestep_rule == Settings::TimestepRule::signal_velocity;
+  }
+
   // --- parts by type -------------------------------------------------------------------------
   template <class Part>
   void set(const Part& part) {

@@ -18,6 +18,16 @@
 /// the symmetry is broken and particles rearrange), or a settled glass (each side relaxed to
 /// uniform density in its own periodic box, sph/relax.hpp).
 ///
+/// **Walls instead of the period.**  A periodic tube holds twice the particles of the window it
+/// is measured in: the far half is there only to keep the far interface's waves away.  With
+/// `ends = walls` the tube is the window, \f$ |x| \le L \f$, open in x, and each end is closed by
+/// a layer of fixed boundary particles (sph::FixedParticles, `wall_cells` lattice cells of the
+/// side's own spacing) that continue the lattice and hold the side's initial state.  Until the
+/// first wave reaches a wall the gas next to it is the undisturbed initial state, at rest, so a
+/// frozen continuation of it is exactly what the gas would see there; the fixed particles have
+/// their density summed like any other (the outermost, whose kernels reach out of the layer,
+/// are too far from the gas to matter).  Both gases must be at rest for that.
+///
 /// Particles sit on cubic lattices of equal mass: the spacing on the right is
 /// \f$ \Delta x_R = \Delta x_L (\rho_L/\rho_R)^{1/D} \f$, rounded so that whole numbers of cells
 /// fill the cross-section and the length (in 2D/3D the right lattice is then slightly
@@ -35,7 +45,9 @@
 #include "sph/riemann.hpp"
 #include "sph/convergence.hpp"
 
+#include <algorithm>
 #include <cmath>
+#include <limits>
 #include <string>
 
 namespace sph {
@@ -47,8 +59,12 @@ struct ShockTubeSetup {
   double gamma = 1.4;
   double left_spacing = 1.0 / 800;  ///< lattice spacing on the left side
   double half_length = 1.0;         ///< each side is this long; the x period is twice it
-  double width = 0.125;             ///< cross-section width in 2D/3D (periodic)
-  bool calibrate = true;            ///< scale each side's mass so its SPH density is nominal
+  /// How the tube ends: periodic in x (the far interface at x = ±L), or fixed-particle walls
+  enum class Ends { periodic, walls };
+  Ends ends = Ends::periodic;
+  int wall_cells = 8;     ///< walls: the fixed layer's thickness in lattice cells of each side
+  double width = 0.125;   ///< cross-section width in 2D/3D (periodic)
+  bool calibrate = true;  ///< scale each side's mass so its SPH density is nominal
   enum class Start { lattice, disturbed, settled };
   Start start = Start::lattice;  ///< see the file comment; 2D/3D scenes want disturbed or settled
   double disturbance = 0.2;      ///< disturbed: offsets up to this fraction of the spacing
@@ -99,6 +115,13 @@ ShockTube<D> shock_tube_lattices(const ShockTubeSetup& s) {
   require(s.left_spacing < 0.1 * s.half_length,
           "shock tube: the left spacing must be well below the tube length");
   const double L = s.half_length;
+  const bool walls = s.ends == ShockTubeSetup::Ends::walls;
+  if (walls) {
+    require(s.wall_cells >= 4, "shock tube: a wall needs at least 4 cells of fixed particles");
+    require(s.left.velocity == 0 && s.right.velocity == 0,
+            "shock tube: a tube closed by walls needs both gases at rest (--v-left, --v-right): "
+            "gas moving at a wall launches a wave from it at t = 0");
+  }
   // Left: cubic, isotropic.
   std::array<int, D> left_cells{}, right_cells{};
   left_cells[0] = std::max(1, static_cast<int>(std::lround(L / s.left_spacing)));
@@ -124,6 +147,14 @@ ShockTube<D> shock_tube_lattices(const ShockTubeSetup& s) {
   lower[0] = -L;
   upper[0] = L;
   tube.box = Box<D>::periodic_box(lower, upper);
+  if (walls) {
+    // Open in x; each side's lattice continues through the wall for wall_cells more cells.
+    tube.box.periodic[0] = false;
+    left_cells[0] += s.wall_cells;
+    right_cells[0] += s.wall_cells;
+    lower[0] -= s.wall_cells * dx_left;
+    upper[0] += s.wall_cells * tube.right_spacing;
+  }
   Vec<D> mid_low = lower, mid_high = upper;
   mid_high[0] = 0.0;
   mid_low[0] = 0.0;
@@ -146,13 +177,17 @@ ShockTube<D> shock_tube_lattices(const ShockTubeSetup& s) {
   for (int a = 1; a < D; ++a) cell_volume *= s.width / left_cells[a];
   const double mass = s.left.density * cell_volume;
   const IdealGas gas(s.gamma);
+  // Beyond |x| = L (walls only) the particles are fixed.
+  const auto kind = [&](const Vec<D>& x) {
+    return std::abs(x[0]) > L ? ParticleKind::fixed : ParticleKind::fluid;
+  };
   for (const auto& x : left_points) {
     tube.particles.add(x, Vec<D>::Unit(0) * s.left.velocity, mass,
-                       gas.internal_energy(s.left.density, s.left.pressure));
+                       gas.internal_energy(s.left.density, s.left.pressure), 0.0, kind(x));
   }
   for (const auto& x : right_points) {
     tube.particles.add(x, Vec<D>::Unit(0) * s.right.velocity, mass,
-                       gas.internal_energy(s.right.density, s.right.pressure));
+                       gas.internal_energy(s.right.density, s.right.pressure), 0.0, kind(x));
   }
   tube.left_count = static_cast<int>(left_points.size());
   tube.right_count = static_cast<int>(right_points.size());
@@ -171,6 +206,12 @@ ShockTube<D> make_shock_tube(const ShockTubeSetup& s, const SmoothingLengthRule&
   if (!s.calibrate) return tube;
   Particles<D>& p = tube.particles;
   NeighbourSearch<D, K> search;
+  // The far ends of each side's lattice: the period's end, or the outer face of a wall.
+  double outer[2] = {s.half_length, s.half_length};
+  if (s.ends == ShockTubeSetup::Ends::walls) {
+    outer[0] += s.wall_cells * s.half_length / std::lround(s.half_length / s.left_spacing);
+    outer[1] += s.wall_cells * tube.right_spacing;
+  }
   for (int sweep = 0; sweep < 4; ++sweep) {
     search.update(p, tube.box, rule);
     compute_density<D, K>(p, search.list(), form);
@@ -187,7 +228,7 @@ ShockTube<D> make_shock_tube(const ShockTubeSetup& s, const SmoothingLengthRule&
       const double x = p.position[i][0];
       const int side = x < 0 ? 0 : 1;
       const double margin = 1.5 * K::support * h_max[side];
-      if (std::abs(x) < margin || s.half_length - std::abs(x) < margin) continue;
+      if (std::abs(x) < margin || outer[side] - std::abs(x) < margin) continue;
       sum[side] += p.density[i];
       ++count[side];
     }
@@ -203,6 +244,66 @@ ShockTube<D> make_shock_tube(const ShockTubeSetup& s, const SmoothingLengthRule&
 /// The window in which a shock tube is compared with its exact solution: |x| <= 0.5, well
 /// inside the waves of the far interface for t <= 0.2.
 inline Selection shock_tube_window() { return Selection::range(-0.5, 0.5); }
+
+/// How long a tube's exact solution describes its measured window, in the frame that moves with
+/// the mean of the two gases' velocities, \f$ v_f = (v_L + v_R)/2 \f$ (zero for Sod's tube; the
+/// velocity of a tube boosted as a whole).
+struct ExactValidity {
+  double frame_velocity = 0;  ///< \f$ v_f \f$
+  double until = 0;           ///< the exact solution holds in the window for t <= until
+  double end_reached = 0;     ///< when the fastest wave from x = 0 reaches the tube's end
+  std::string reason;         ///< which waves arrive, and when
+};
+
+/// The time until which the Riemann solution at x = 0 describes the window |x| <= `window` of
+/// the tube \p s (in the frame moving with \f$ v_f \f$).  With walls the window is the whole
+/// tube, and it holds until the fastest wave from the centre reaches a wall.  A periodic tube
+/// of period 2L has a second interface at x = ±L, the two states the other way round, whose own
+/// Riemann problem launches waves towards the window from both sides: the solution holds until
+/// the first of them reaches the window's edge or meets a wave from the centre (after which the
+/// waves the meeting makes may run into the window; the bound is cautious, never late).  The
+/// outer waves of a fan move no slower than the sound speed of the gas they run into, so where
+/// the far problem has no star state (its gases fly apart) its heads \f$ v \mp c \f$ are used.
+inline ExactValidity exact_solution_validity(const ShockTubeSetup& s, double window = 0.5) {
+  ExactValidity v;
+  const double L = s.half_length;
+  const bool walls = s.ends == ShockTubeSetup::Ends::walls;
+  v.frame_velocity = walls ? 0.0 : 0.5 * (s.left.velocity + s.right.velocity);
+  GasState left = s.left, right = s.right;
+  left.velocity -= v.frame_velocity;
+  right.velocity -= v.frame_velocity;
+  const RiemannSolution centre(left, right, s.gamma);
+  const double c_min = centre.left_wave().head_speed, c_max = centre.right_wave().head_speed;
+  const double fastest = std::max(-c_min, c_max);
+  v.end_reached = fastest > 0 ? L / fastest : std::numeric_limits<double>::infinity();
+  const auto text = [](double x) { return show(x); };
+  if (walls) {
+    v.until = v.end_reached;
+    v.reason = "the fastest wave from the interface (speed " + text(fastest) +
+               ") reaches the wall at |x| = " + text(L) + " at t = " + text(v.until);
+    return v;
+  }
+  double f_min = right.velocity - sound_speed(right, s.gamma);
+  double f_max = left.velocity + sound_speed(left, s.gamma);
+  try {
+    const RiemannSolution far(right, left, s.gamma);
+    f_min = far.left_wave().head_speed;
+    f_max = far.right_wave().head_speed;
+  } catch (const Error&) {
+    // the far interface opens a vacuum: its fans' heads, the sound speeds, bound its waves
+  }
+  const double inf = std::numeric_limits<double>::infinity();
+  const double reach = std::max(L - window, 0.0);
+  v.until = std::min({f_min < 0 ? reach / -f_min : inf, f_max > 0 ? reach / f_max : inf,
+                      c_max > f_min ? L / (c_max - f_min) : inf,
+                      f_max > c_min ? L / (f_max - c_min) : inf});
+  v.reason = "the waves of the far interface at x = ±" + text(L) + " (speeds " + text(f_min) +
+             " and " + text(f_max) + ") reach the window |x| <= " + text(window) +
+             " or meet the waves from the centre at t = " + text(v.until) +
+             "; the fastest wave from the centre (speed " + text(fastest) +
+             ") reaches the tube's periodic end at t = " + text(v.end_reached);
+  return v;
+}
 
 /// The x-velocity of every particle (the quantity the exact solution knows).
 template <int D>
