@@ -176,7 +176,8 @@ class SedovSolution {
     }
   }
 
-  // Simpson's rule over the table (an even number of intervals), plus the centre's power laws integrated exactly.
+  // Simpson's rule over the table (an even number of intervals), plus a fine midpoint sum over
+  // the centre's power laws below lambda_min.
   template <class F>
   double integral(F&& integrand) const {
     const std::size_t n = table_.size() - 1;
