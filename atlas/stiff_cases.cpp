@@ -369,7 +369,7 @@ SedovResult run_sedov(const SedovParameters& par, app::Chapter& chapter, bool dr
                 .particles = static_cast<long long>(blast.particles.size()),
                 .run_time = run.row.seconds,
                 .extra = "cubic lattice " + std::to_string(par.cells) + "^3, periodic box"});
-  const double size = 2.5;
+  const double size = 4.0;
   struct Panel {
     const char* label;
     const std::vector<double>* particles;
@@ -382,7 +382,7 @@ SedovResult run_sedov(const SedovParameters& par, app::Chapter& chapter, bool dr
     plot::Axes& ax = figure.panel(k);
     ax.xlabel("r  [code units]").ylabel(panels[k].label).xlim(0, 0.5);
     ax.scatter(r, *panels[k].particles,
-               {.label = "SPH particles", .color = plot::black, .size = size, .alpha = 0.6});
+               {.label = "SPH particles", .color = plot::black, .size = size, .alpha = 0.7});
     ax.line(re, *panels[k].exact_values,
             {.label = "self-similar solution", .color = plot::red, .width = 2.0});
     if (k == 0) ax.legend(plot::Corner::upper_left);
