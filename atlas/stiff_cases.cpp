@@ -646,7 +646,7 @@ std::string findings(const std::vector<Row>& rows) {
 }
 
 void write_page(const std::string& path, const std::vector<Row>& rows, const SedovResult& sedov,
-                const SedovParameters& sp, bool quick) {
+                const SedovParameters& sp, bool quick, const std::string& only) {
   std::ofstream md(path);
   int ran = 0, stopped = 0;
   for (const Row& r : rows) (r.ran ? ran : stopped) += 1;
@@ -655,7 +655,8 @@ void write_page(const std::string& path, const std::vector<Row>& rows, const Sed
         "`atlas/stiff_cases.cpp` (`build/atlas/atlas_stiff_cases`"
      << (quick ? " --quick: a reduced resolution" : ", at full resolution") << "); " << rows.size()
      << " runs, " << ran << " reached their end time and " << stopped
-     << " were stopped by the library with the message shown.\n\n"
+     << " were stopped by the library with the message shown"
+     << (only.empty() ? "" : " (only the groups matching --only " + only + ")") << ".\n\n"
      << "A run may end in two ways: it reaches its end time with every field finite, or the "
         "library stops it with a message that names the particle, the quantity and the limit "
         "(sph::Error).  A NaN, a crash or a hang is neither, and the program fails if any run "
@@ -726,6 +727,16 @@ void write_page(const std::string& path, const std::vector<Row>& rows, const Sed
        << " \"The Sedov-Taylor blast: density, radial velocity and pressure against radius at "
           "the end, and the shock radius against time\"\n";
   }
+  md << "\n## What to try {#stiff_cases_try}\n\n"
+     << "- `--sedov-gamma 1.4`: the blast in a diatomic gas; xi_0 becomes 1.0328 and the "
+        "compression just behind the shock 6 instead of 4: compare the particles' peak and the "
+        "L1 difference with the ones above.\n"
+     << "- `--sedov-cells 48`: 3.4 times the particles; see whether the densest shell closes "
+        "on R(t) and by how much the L1 difference falls.\n"
+     << "- `--boost 100`: the tube moving at +100; compare its rest-frame errors and its "
+        "steps with the tube at rest (the own speed in the Courant limit).\n"
+     << "- `--only sedov` (or strong, vacuum, streams, gamma, boost, degenerate): one group "
+        "alone.\n";
 }
 
 }  // namespace
@@ -818,7 +829,8 @@ int main(int argc, char** argv) {
     }
 
     // ---- The page, the console, the checks ----
-    write_page(chapter.figure_path("stiff_cases.md").string(), rows, sedov, par.sedov, par.quick);
+    write_page(chapter.figure_path("stiff_cases.md").string(), rows, sedov, par.sedov, par.quick,
+               par.only);
     std::cout << table(rows) << "\n";
     int ran = 0;
     for (const Row& r : rows) {
