@@ -423,8 +423,7 @@ void strong_tube(std::vector<Row>& rows, double ratio, double spacing,
 }
 
 template <int D>
-void strong_tubes(std::vector<Row>& rows, const Parameters& par, double spacing,
-                  const sph::SmoothingLengthRule& rule) {
+void strong_tubes(std::vector<Row>& rows, double spacing, const sph::SmoothingLengthRule& rule) {
   RunLimits limits;
   limits.max_steps = D == 1 ? 200000 : 20000;
   for (double ratio : {1e5, 1e10}) {
@@ -432,7 +431,6 @@ void strong_tubes(std::vector<Row>& rows, const Parameters& par, double spacing,
     strong_tube<OwnWorkViscous<D>>(rows, ratio, spacing, rule, limits);
     if (D == 1) strong_tube<OwnWorkInviscid<D>>(rows, ratio, spacing, rule, limits);
   }
-  (void)par;
 }
 
 template <class Scene>
@@ -770,9 +768,9 @@ int main(int argc, char** argv) {
 
     if (wanted("strong")) {
       std::cerr << "Strong shock tubes\n";
-      strong_tubes<1>(rows, par, spacing_1d, sph::SmoothingLengthRule::from_density(4));
-      strong_tubes<2>(rows, par, spacing_2d, sph::SmoothingLengthRule::neighbour_number(20, 1));
-      strong_tubes<3>(rows, par, spacing_3d, sph::SmoothingLengthRule::neighbour_number(50, 2));
+      strong_tubes<1>(rows, spacing_1d, sph::SmoothingLengthRule::from_density(4));
+      strong_tubes<2>(rows, spacing_2d, sph::SmoothingLengthRule::neighbour_number(20, 1));
+      strong_tubes<3>(rows, spacing_3d, sph::SmoothingLengthRule::neighbour_number(50, 2));
     }
 
     if (wanted("vacuum")) {
