@@ -35,6 +35,22 @@ elseif(NOT status EQUAL 0)
   message(FATAL_ERROR "docs: the chapter pages could not be made (see the messages above)")
 endif()
 
+# ---- 1b. The atlas page ----------------------------------------------------------------------
+# The atlas program (atlas/) writes its page, stiff_cases.md, with its figures into
+# FIGURES/atlas; until it has run, the page says so.
+set(atlas "${FIGURES}/atlas")
+if(EXISTS "${atlas}/stiff_cases.md")
+  file(COPY "${atlas}/stiff_cases.md" DESTINATION "${WORK}/pages")
+  file(GLOB atlas_figures "${atlas}/*.png")
+  if(atlas_figures)
+    file(COPY ${atlas_figures} DESTINATION "${WORK}/images")
+  endif()
+else()
+  file(WRITE "${WORK}/pages/stiff_cases.md"
+       "# Stiff and extreme cases {#stiff_cases}\n\n<em>The atlas has not been run yet: "
+       "`scripts/figures.sh` runs it and puts its table and figures here.</em>\n")
+endif()
+
 # ---- 2. Doxygen ------------------------------------------------------------------------------
 set(log "${WORK}/warnings.log")
 file(REMOVE "${log}")
@@ -82,7 +98,8 @@ endif()
 # <div class="line"> per line) may hold "**" of their own, so they are left out.
 if(STRICT)
   file(GLOB pages "${WORK}/html/ch[0-9][0-9].html" "${WORK}/html/papers.html"
-                  "${WORK}/html/design.html" "${WORK}/html/index.html")
+                  "${WORK}/html/design.html" "${WORK}/html/index.html"
+                  "${WORK}/html/stiff_cases.html")
   set(raw "")
   foreach(page IN LISTS pages)
     file(STRINGS "${page}" lines)

@@ -40,6 +40,7 @@
 #include "sph/density.hpp"
 #include "sph/fields.hpp"
 #include "sph/forces.hpp"
+#include "sph/initial_conditions.hpp"
 #include "sph/neighbours.hpp"
 #include "sph/parallel.hpp"
 #include "sph/particles.hpp"
@@ -116,6 +117,7 @@ class Simulation {
             "simulation: the signal velocity's beta must be non-negative");
     box_.validate();
     particles_.validate();
+    if constexpr (hydro) require_distinct_particles();
     boundaries_.validate(particles_);
     for (auto& x : particles_.position) x = box_.wrap(x);
     terms_.for_each([n = particles_.size()](auto& t) {
@@ -461,6 +463,22 @@ class Simulation {
     const std::size_t n = p.size();
 #pragma omp parallel for schedule(static) if (n >= parallel_threshold)
     for (std::size_t i = 0; i < n; ++i) p.acceleration[i] += external_.acceleration(p.position[i]);
+  }
+
+  // Two particles at one point see each other at r = 0, where the kernel gradient is zero:
+  // nothing can ever push them apart, and the smoothing-length iteration of the density rule
+  // chases h towards zero.  Stop at the start and name them.  (All particles at one point is
+  // left to the neighbour search, whose message says exactly that.)
+  void require_distinct_particles() const {
+    const auto [lo, hi] = bounds<D>(particles_.position);
+    if (particles_.size() < 2 || lo == hi) return;
+    try {
+      require_distinct_positions<D>(particles_.position);
+    } catch (const Error& e) {
+      throw Error(std::string(e.what()) +
+                  ": SPH cannot separate two particles at one point (the kernel gradient "
+                  "between them is zero); give every particle its own position");
+    }
   }
 
   // A NaN or infinity must never travel on: stop and name the particle.

@@ -147,6 +147,11 @@ TEST_CASE("bad input stops with a message naming the problem", "[simulation]") {
     CHECK_THROWS_WITH(sph::Simulation<Hydro1>(p, open, sph::IdealGas(1.4)),
                       Catch::Contains("particle 3"));
   }
+  SECTION("two particles at one point") {
+    p.position[12] = p.position[11];
+    CHECK_THROWS_WITH(sph::Simulation<Hydro1>(p, open, sph::IdealGas(1.4)),
+                      Catch::Contains("particles 11 and 12 coincide"));
+  }
   SECTION("negative internal energy") {
     p.internal_energy[5] = -0.5;
     CHECK_THROWS_WITH(sph::Simulation<Hydro1>(p, open, sph::IdealGas(1.4)),
