@@ -28,8 +28,9 @@ std::string show(double number, int digits) {
 }
 
 double particle_bytes(int dimension, double particles) {
-  // Measured as the peak memory of a chapter run against its particle count, rounded up; the
-  // neighbour lists dominate: some 60 neighbours in 3D, 30 in 2D, 4 to 8 in 1D.
+  // An estimate, rounded up: a particle's fields are some 20 numbers (170 bytes in 3D), and its
+  // neighbour list, which dominates, some 60 pairs of 8 bytes in 3D, 30 in 2D and 4 to 8 in 1D,
+  // kept from both sides; a run keeps a few copies of the particles besides.
   const double per_particle = dimension == 1 ? 200.0 : dimension == 2 ? 500.0 : 1000.0;
   return per_particle * particles;
 }
@@ -46,6 +47,12 @@ std::string show_bytes(double bytes) {
 
 namespace {
 
+/// The value as the message quotes it: as typed, unless that is long ("1000...0" with 300
+/// digits), then as %g prints it.
+std::string quoted(const std::string& input, double value) {
+  return input.size() <= 16 ? input : app::show(value);
+}
+
 /// A validator that reads the value as a number and applies \p accept; \p problem is the
 /// message when it fails ("must be greater than 1").
 CLI::Validator numeric(std::function<bool(double)> accept, const std::string& problem,
@@ -59,7 +66,7 @@ CLI::Validator numeric(std::function<bool(double)> accept, const std::string& pr
         if (!std::isfinite(value)) {
           return "must be a finite number, got " + input;
         }
-        return accept(value) ? std::string() : problem + ", got " + input;
+        return accept(value) ? std::string() : problem + ", got " + quoted(input, value);
       },
       description);
 }
@@ -107,9 +114,16 @@ CLI::Validator whole_number() {
         long long value = 0;
         if (CLI::detail::lexical_cast(input, value)) return {};
         double number = 0.0;
-        return CLI::detail::lexical_cast(input, number)
-                   ? "must be a whole number, got " + input
-                   : "expected a whole number, got '" + input + "'";
+        if (!CLI::detail::lexical_cast(input, number)) {
+          return "expected a whole number, got '" + input + "'";
+        }
+        if (!std::isfinite(number) || number != std::floor(number)) {
+          return "must be a whole number, got " + quoted(input, number);
+        }
+        if (std::abs(number) > 1e18) return "is far too large, got " + quoted(input, number);
+        // A whole number written as 2e9: pass it on in digits, to the range checks that follow.
+        input = std::to_string(static_cast<long long>(number));
+        return {};
       },
       "");
 }
@@ -149,7 +163,7 @@ CLI::Validator count_between(double low, double high, std::function<double(doubl
           return "expected a number, got '" + input + "'";
         }
         if (!std::isfinite(value)) return "must be a finite number, got " + input;
-        if (value < low) return "must lie in " + range + ", got " + input;
+        if (value < low) return "must lie in " + range + ", got " + quoted(input, value);
         if (value > high) {
           return app::show(value) + " would need about " + show_bytes(bytes(value)) +
                  " of memory; at most " + show(high);
@@ -214,6 +228,10 @@ CLI::Option& Chapter::flag(const std::string& flag, bool& value, const std::stri
 }
 
 void Chapter::require(std::function<bool()> condition, std::string problem) {
+  require(std::move(condition), [problem = std::move(problem)] { return problem; });
+}
+
+void Chapter::require(std::function<bool()> condition, std::function<std::string()> problem) {
   requirements_.push_back({std::move(condition), std::move(problem)});
 }
 
@@ -235,7 +253,7 @@ int Chapter::parse() {
   // Check the conditions between parameters.
   for (const Requirement& requirement : requirements_) {
     if (!requirement.condition()) {
-      *err_ << name_ << ": error: " << requirement.problem << "\n"
+      *err_ << name_ << ": error: " << requirement.problem() << "\n"
             << "Run with --help for more information.\n";
       return static_cast<int>(CLI::ExitCodes::ValidationError);
     }

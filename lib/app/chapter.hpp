@@ -189,6 +189,9 @@ class Chapter {
   /// Declares a condition between parameters that parse() checks after reading them, e.g.
   /// `chapter.require([&] { return h_min < h_max; }, "--h-min must be smaller than --h-max")`.
   void require(std::function<bool()> condition, std::string problem);
+  /// The same, with the message made when the condition fails, so that it can quote the
+  /// values: `[&] { return "--neighbours " + app::show(n) + " needs --cells >= ..."; }`.
+  void require(std::function<bool()> condition, std::function<std::string()> problem);
 
   /// Reads the command line.  Returns -1 when the program should go on; otherwise the exit
   /// status to return from main(): 0 after `--help`, non-zero after an error, which has been
@@ -271,7 +274,7 @@ class Chapter {
 
   struct Requirement {
     std::function<bool()> condition;
-    std::string problem;
+    std::function<std::string()> problem;
   };
   struct Check {
     bool ok;

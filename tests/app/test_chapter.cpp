@@ -119,6 +119,17 @@ TEST_CASE("an impossible value is an error naming the option and the problem", "
     CHECK(result.code > 0);
     CHECK(result.err.find("--particles: must be a whole number") != std::string::npos);
   }
+  SECTION("a huge number is quoted readably") {
+    const Parsed result = parse({"ch99", "--particles", "1" + std::string(300, '0')});
+    CHECK(result.code > 0);
+    CHECK(result.err.find("--particles: is far too large, got 1e+300") != std::string::npos);
+  }
+  SECTION("a whole number may be written with an exponent") {
+    const fs::path dir = scratch("exponent");
+    const Parsed result = parse({"ch99", "--particles", "2e3", "--output", dir.string()});
+    CHECK(result.code == -1);
+    CHECK(result.particles == 2000);
+  }
   SECTION("a missing value") {
     const Parsed result = parse({"ch99", "--gamma"});
     CHECK(result.code > 0);
@@ -165,6 +176,25 @@ TEST_CASE("a condition between parameters is checked by parse", "[app]") {
   chapter.require([&] { return h_min < h_max; }, "--h-min must be smaller than --h-max");
   CHECK(chapter.parse() > 0);
   CHECK(err.str().find("--h-min must be smaller than --h-max") != std::string::npos);
+}
+
+TEST_CASE("a condition's message can quote the values read", "[app]") {
+  CommandLine line({"ch99", "--neighbours", "12", "--quick", "--output", scratch("why").string()});
+  app::Chapter chapter("99-test", "Chapter 99: a test", line.argc(), line.argv());
+  std::ostringstream out, err;
+  chapter.set_streams(out, err);
+  double neighbours = 4;
+  int cells = 800;
+  chapter.parameter("--neighbours", neighbours, "neighbours");
+  chapter.parameter("--cells", cells, "cells", 400);
+  chapter.require([&] { return cells >= 50 * neighbours; },
+                  [&] {
+                    return "--neighbours " + app::show(neighbours) +
+                           " needs --cells >= " + app::show(50 * neighbours) + ", got " +
+                           app::show(cells);
+                  });
+  CHECK(chapter.parse() > 0);  // (the condition sees the quick default)
+  CHECK(err.str().find("--neighbours 12 needs --cells >= 600, got 400") != std::string::npos);
 }
 
 TEST_CASE("summary.txt holds key = value lines, later values replacing earlier", "[app]") {
