@@ -111,8 +111,7 @@ CLI::Validator finite() {
 CLI::Validator whole_number() {
   return CLI::Validator(
       [](std::string& input) -> std::string {
-        long long value = 0;
-        if (CLI::detail::lexical_cast(input, value)) return {};
+        // (read as a number first: a conversion to an integer would clamp 1e300's digits)
         double number = 0.0;
         if (!CLI::detail::lexical_cast(input, number)) {
           return "expected a whole number, got '" + input + "'";
@@ -121,7 +120,7 @@ CLI::Validator whole_number() {
           return "must be a whole number, got " + quoted(input, number);
         }
         if (std::abs(number) > 1e18) return "is far too large, got " + quoted(input, number);
-        // A whole number written as 2e9: pass it on in digits, to the range checks that follow.
+        // In digits, for the range checks that follow and the conversion: 2e9 is 2000000000.
         input = std::to_string(static_cast<long long>(number));
         return {};
       },

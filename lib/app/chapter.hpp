@@ -87,7 +87,8 @@ namespace app {
 
 /// Accepts any finite number (rejects `nan`, `inf`).  Added to every floating-point parameter.
 CLI::Validator finite();
-/// Accepts whole numbers (rejects `3.5`).  Added to every integer parameter.
+/// Accepts whole numbers (rejects `3.5`), and writes one given as `2e9` in digits, so that it
+/// reaches the range checks and the conversion.  Added to every integer parameter.
 CLI::Validator whole_number();
 /// Accepts numbers > 0.
 CLI::Validator positive();
@@ -163,7 +164,7 @@ class Chapter {
     if constexpr (std::is_floating_point_v<T>) {
       option->check(finite());
     } else if constexpr (std::is_integral_v<T> && !std::is_same_v<T, bool>) {
-      option->check(whole_number());
+      option->transform(whole_number());  // (a transform: it may rewrite 2e9 as 2000000000)
     }
     return *option;
   }
