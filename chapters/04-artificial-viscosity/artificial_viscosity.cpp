@@ -252,7 +252,7 @@ void declare_parameters(app::Chapter& chapter, Parameters& par) {
   };
   chapter.require([=] { return coarsest_1d() >= least_1d(); },
                   [=, &par] {
-                    return "--neighbours-1d " + app::show(par.neighbours_1d) + " needs more than " +
+                    return "--neighbours-1d " + app::show(par.neighbours_1d) + " needs at least " +
                            app::show(least_1d(), 3) +
                            " particles per unit length in every 1D tube (a quarter of --sod-1d " +
                            "in Step 1), else the thinner side has no interior; the coarsest " +
