@@ -209,8 +209,9 @@ struct Parameters {
 };
 
 void declare_parameters(app::Chapter& chapter, Parameters& par) {
+  // (the switch runs from 0.1 up to alpha, so alpha may not be below 0.1)
   chapter.parameter("--alpha", par.alpha, "standard viscosity: alpha (and the switch's maximum)")
-      .check(app::between(0.0, 10.0));
+      .check(app::between(0.1, 10.0));
   chapter.parameter("--beta", par.beta, "beta of the standard and the restricted vNR term")
       .check(app::between(0.0, 20.0));
   chapter.parameter("--eta", par.eta, "eta of the collective term").check(app::between(0.0, 100.0));
