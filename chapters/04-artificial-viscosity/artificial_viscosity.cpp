@@ -215,6 +215,20 @@ void declare_parameters(app::Chapter& chapter, Parameters& par) {
       .check(app::between(0.0, 20.0));
   chapter.parameter("--nu2", par.nu2, "nu^2 / h^2 in mu_ij (Monaghan: 0.01; Selhammar: 1e-4)")
       .check(app::between(1e-8, 1.0));
+  // Steps 1 and 3 measure Sod's pattern of waves, a rarefaction moving left and a shock moving
+  // right (colliding gases, say, make two shocks and no plateau behind a rarefaction).
+  chapter.require(
+      [&par] {
+        const sph::RiemannSolution exact(par.tube.left, par.tube.right, par.tube.gamma);
+        return exact.left_wave().kind == sph::WaveKind::rarefaction &&
+               exact.right_wave().kind == sph::WaveKind::shock;
+      },
+      [&par] {
+        const sph::RiemannSolution exact(par.tube.left, par.tube.right, par.tube.gamma);
+        return "the tube's states (--rho-left ... --p-right) must make a rarefaction on the left "
+               "and a shock on the right, as Sod's do; these make " +
+               exact.describe();
+      });
   chapter
       .parameter("--t-end", par.t_end,
                  "time at which the tubes are compared (earlier than 0.05, Step 3's plateau "
