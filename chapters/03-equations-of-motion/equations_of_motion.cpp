@@ -301,23 +301,32 @@ struct StreamsScene {
 /// Every number a reader may want to change is a command-line option, declared below with
 /// its range (`--help` lists them with their defaults).  The ranges are not decoration; each
 /// keeps the chapter's measurements meaningful:
-///  - `--cells` at least 300: coarser, the post-shock window of Step 3, four smoothing lengths
-///    from the contact and from the shock, holds no particle at all;
-///  - `--neighbours` between 2.5 and 12: the kernel's support \f$ 2h = N\Delta x/2 \f$ reaches
-///    past the nearest particle on each side only for \f$ N > 2 \f$, and many neighbours
-///    smooth the waves over so many particles that the post-shock window, which keeps
-///    \f$ 4h \f$ from both of its ends, shrinks to nothing at coarse resolution;
-///  - `--courant` below 0.9: eq 7 is a stability condition, and a factor near one leaves no
-///    margin for the step-to-step change of the signal speed;
-///  - `--mach` at least 1: the colliding streams are meant to collide supersonically;
+///  - `--cells` from 300 to 3200: coarser, the post-shock window of Step 3, four smoothing
+///    lengths from the contact and from the shock, holds no particle at all; finer, the run
+///    grows as the square of the resolution (more particles, shorter steps);
+///  - `--neighbours` between 2.7 and 8, and no more than the resolution allows.  Below
+///    \f$ N = 8/3 \f$ the rule \f$ h = Nm/(4\rho) \f$ has no fixed point: as \f$ h \f$ shrinks,
+///    the density tends to a particle's own term \f$ 2m/(3h) \f$, and the rule then gives
+///    \f$ 3Nh/8 < h \f$, so \f$ h \f$ collapses to zero.  Above 8, the coarsest tube of
+///    Step 7's sweep, 100 particles per unit length on the left and 12.5 on the right, has no
+///    particle 1.5 kernel supports from both ends of its right side, where the tube's masses are
+///    calibrated.  And many neighbours smooth the waves over so many particles that the
+///    post-shock window, 0.165 wide at \f$ t = 0.2 \f$ and keeping \f$ 4h \f$ from both of its
+///    ends, holds no particle: the program asks for
+///    \f$ 0.165\,\rho_*\,\mathrm{cells} \ge 2N + 3 \f$ (three particles in the window) and
+///    says which `--cells` a given `--neighbours` needs;
+///  - `--courant` up to 0.8: eq 7 is a stability condition, and a factor near one leaves no
+///    margin for the step-to-step change of the signal speed -- at 0.9 the inviscid tube's
+///    post-shock oscillations grow until a particle's internal energy turns negative;
+///  - `--mach` from 1 to 100: the colliding streams are meant to collide supersonically;
 ///  - `--levels` from 2 to 8: two resolutions are the least from which an order can be fitted,
 ///    and each further level makes the sweep about four times as long.
 ///
 /// `--quick` halves the resolution of the tube and of the streams, gives the pile-up run 4000
 /// steps instead of 20000, and stops the error sweep of Step 7 at \f$ \Delta x = 1/400 \f$, so
-/// that the whole chapter runs in a few seconds under the tests, with the same checks.  It
-/// overrides `--cells`, `--stream-cells`, `--pileup-steps` and `--levels`; the other options
-/// keep their meaning.
+/// that the whole chapter runs in a few seconds under the tests, with the same checks.  These
+/// are the quick defaults of `--cells`, `--stream-cells`, `--pileup-steps` and `--levels`: an
+/// option given on the command line keeps its value with `--quick` too.
 
 struct Parameters {
   SodScene sod;
@@ -332,45 +341,60 @@ struct Parameters {
 };
 
 void declare_parameters(app::Chapter& chapter, Parameters& par) {
+  // (coarser than 300, the post-shock window holds no particle; the tube holds 1.125 cells
+  // particles per unit length, two units long, and its cost grows as cells^2)
   chapter
       .parameter("--cells", par.cells,
-                 "shock tube: lattice cells per unit length on the left (dx = 1/cells)")
-      .check(app::at_least(300));  // coarser, the post-shock window holds no particle
+                 "shock tube: lattice cells per unit length on the left (dx = 1/cells)", 400)
+      .check(
+          app::count_between(300, 3200, [](double n) { return app::particle_bytes(1, 2.25 * n); }));
+  // (below N = 8/3 the rule h = N m/(4 rho) has no fixed point: as h shrinks, the density tends
+  // to a particle's own term 2m/(3h), and h = 3N h/8 shrinks further, to zero)
   chapter
-      .parameter("--neighbours", par.sod.neighbours, "shock tube: N in h = N m/(4 rho) (4: h = dx)")
-      .check(app::between(2.5, 12));
+      .parameter("--neighbours", par.sod.neighbours,
+                 "shock tube: N in h = N m/(4 rho) (4: h = dx; below 8/3, h collapses to zero; "
+                 "above 8, Step 7's coarsest tube has no interior)")
+      .check(app::between(2.7, 8));
+  // Step 3's post-shock window keeps 4h from the contact and from the shock, 0.165 apart at
+  // t = 0.2, where h = N / (4 rho* cells) with rho* = 0.266: it holds three particles only
+  // when 0.165 rho* cells >= 2N + 3.
+  chapter.require(
+      [&par] { return 0.165 * 0.266 * par.cells >= 2 * par.sod.neighbours + 3; },
+      [&par] {
+        return "--neighbours " + app::show(par.sod.neighbours) + " needs --cells " +
+               app::show(std::ceil((2 * par.sod.neighbours + 3) / (0.165 * 0.266))) +
+               " or more (Step 3's post-shock window, 4h from the contact and from the shock, " +
+               "holds no particle otherwise), got " + app::show(par.cells);
+      });
+  // (at 0.9 the inviscid tube's post-shock oscillations grow until a particle's energy turns
+  // negative)
   chapter.parameter("--courant", par.sod.courant, "Courant factor epsilon of eq 7")
-      .check(app::between(0.01, 0.9));
+      .check(app::between(0.01, 0.8));
   chapter.parameter("--alpha", par.alpha, "viscosity of the contrast runs: alpha")
-      .check(app::non_negative());
+      .check(app::between(0.0, 10.0));
   chapter.parameter("--beta", par.beta, "viscosity of the contrast runs: beta")
-      .check(app::non_negative());
+      .check(app::between(0.0, 20.0));
   chapter.parameter("--mach", par.streams.setup.mach, "colliding streams: Mach number")
-      .check(app::at_least(1.0));
+      .check(app::between(1.0, 100.0));
   chapter
-      .parameter("--stream-cells", par.stream_cells, "colliding streams: particles per unit length")
-      .check(app::at_least(20));
+      .parameter("--stream-cells", par.stream_cells, "colliding streams: particles per unit length",
+                 100)
+      .check(app::count_between(20, 1600, [](double n) { return app::particle_bytes(1, 2 * n); }));
   chapter
       .parameter("--stream-neighbours", par.streams.neighbours,
                  "colliding streams: neighbour number")
       .check(app::between(3, 12));
   chapter
       .parameter("--pileup-steps", par.pileup_steps,
-                 "colliding streams: step budget of the h-from-density run")
-      .check(app::at_least(100));
+                 "colliding streams: step budget of the h-from-density run", 4000)
+      .check(app::between(100, 1e6));
   chapter
       .parameter("--levels", par.levels,
-                 "error sweep: resolutions dx = 1/100, 1/200, ... (7: a few minutes)")
+                 "error sweep: resolutions dx = 1/100, 1/200, ... (7: a few minutes)", 3)
       .check(app::between(2, 8));
 }
 
-void set_resolution(Parameters& par, bool quick) {
-  if (quick) {
-    par.cells = 400;
-    par.stream_cells = 100;
-    par.pileup_steps = 4000;
-    par.levels = 3;
-  }
+void set_resolution(Parameters& par) {
   par.sod.tube.left_spacing = 1.0 / par.cells;
   par.streams.setup.spacing = 1.0 / par.stream_cells;
 }
@@ -442,14 +466,13 @@ SodRuns step1_sod_runs(const app::Chapter& chapter, const Parameters& par) {
   SodRuns runs{run_sod<HernquistKatz<dim>>("no viscosity", sod, {}),
                run_sod<WithViscosity<dim>>("Monaghan-Gingold AV", sod, {{}, par.viscosity()}),
                run_sod<AsPrinted<dim>>("eq 4 as printed", sod, {})};
-  const std::string output = chapter.output_dir().string();
   const std::pair<const app::TubeRun<dim>*, const char*> stems[] = {
       {&runs.inviscid, "sod_no_viscosity"},
       {&runs.viscous, "sod_monaghan_gingold"},
       {&runs.printed, "sod_as_printed"}};
   for (const auto& [run, stem] : stems) {
-    sph::write_snapshot<dim>(sph::snapshot_path(output, stem, 1), run->particles, sod.t_end,
-                             sod.tube.gamma);
+    sph::write_snapshot<dim>(chapter.figure_path(sph::snapshot_path("", stem, 1)).string(),
+                             run->particles, sod.t_end, sod.tube.gamma);
   }
   return runs;
 }
@@ -1102,11 +1125,13 @@ StreamRuns<dim> step6_colliding_streams(const app::Chapter& chapter, const Param
       std::printf("%s\n", app::wrap(why, 100, 38).c_str());
     }
   }
-  const std::string output = chapter.output_dir().string();
-  sph::write_snapshot<dim>(sph::snapshot_path(output, "streams_no_viscosity", 1),
-                           s.passing.particles, s.passing.t_reached, scene.setup.gamma);
-  sph::write_snapshot<dim>(sph::snapshot_path(output, "streams_monaghan_gingold", 1),
-                           s.stopped.particles, s.stopped.t_reached, scene.setup.gamma);
+  const auto snapshot = [&chapter](const char* stem) {
+    return chapter.figure_path(sph::snapshot_path("", stem, 1)).string();
+  };
+  sph::write_snapshot<dim>(snapshot("streams_no_viscosity"), s.passing.particles,
+                           s.passing.t_reached, scene.setup.gamma);
+  sph::write_snapshot<dim>(snapshot("streams_monaghan_gingold"), s.stopped.particles,
+                           s.stopped.t_reached, scene.setup.gamma);
   streams_figure<dim>({&s.passing, &s.pileup, &s.stopped}, scene,
                       chapter.figure_path("colliding_streams.png").string());
   return s;
@@ -1367,7 +1392,7 @@ int main(int argc, char** argv) {
     Parameters par;
     declare_parameters(chapter, par);
     if (int rc = chapter.parse(); rc >= 0) return rc;
-    set_resolution(par, chapter.quick());
+    set_resolution(par);
 
     const SodRuns sod = step1_sod_runs(chapter, par);
     const ErrorTable errors = step2_errors(sod, par);

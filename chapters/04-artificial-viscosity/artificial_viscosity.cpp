@@ -182,17 +182,20 @@ app::TubeRun<D> run_tube(const sph::ShockTubeSetup& setup, const sph::SmoothingL
 /// \f$ \alpha \f$, \f$ \beta \f$ and \f$ \nu^2 \f$, the output time, the resolution in each
 /// dimension and the neighbour numbers.  The defaults are Sod's tube at the papers' resolutions.
 /// `--quick` runs the 1D tube four times coarser and the 2D and 3D tubes at 64 and 32 particles per
-/// unit length, for the test suite.
+/// unit length, for the test suite (these are quick defaults: a resolution given on the command
+/// line is kept).
 ///
 /// The thresholds the chapter checks are numbers for Sod's tube; with other states the chapter runs
 /// and reports, but checks only conservation.  `is_sod` says which case we are in.  The output time
-/// may not exceed 0.25, because the tube is periodic: its second interface, at \f$ x = \pm 1 \f$,
-/// launches a shock of its own into the thin gas, and that shock (speed 1.75 for Sod's states)
-/// reaches the edge \f$ x = 0.5 \f$ of the measured window at \f$ t \approx 0.29 \f$.  The states
-/// are checked for sense before anything runs: a negative density or pressure, \f$ \gamma \le 1 \f$
-/// or a non-finite number is refused with a message naming the option, and two states that fly
-/// apart fast enough to leave a vacuum between them are refused by the exact solver, which has no
-/// star state to offer for them.
+/// may not precede 0.05, when the plateau that Step 3 measures holds no particle of its coarse 3D
+/// lattice yet, nor exceed 0.25, because the tube is periodic: its second interface, at
+/// \f$ x = \pm 1 \f$, launches a shock of its own into the thin gas, and that shock (speed 1.75
+/// for Sod's states) reaches the edge \f$ x = 0.5 \f$ of the measured window at
+/// \f$ t \approx 0.29 \f$.  The states are checked for sense before anything runs: a density or
+/// pressure outside \f$ [10^{-3}, 10^3] \f$, \f$ \gamma \le 1 \f$ or a non-finite number is
+/// refused with a message naming the option, and two states that fly apart fast enough to leave
+/// a vacuum between them are refused by the exact solver, which has no star state to offer for
+/// them.
 
 struct Parameters {
   sph::ShockTubeSetup tube = sph::ShockTubeSetup::sod();  // Sod (1978), for every tube but one
@@ -215,33 +218,92 @@ struct Parameters {
 void declare_parameters(app::Chapter& chapter, Parameters& par) {
   app::declare_tube_states(chapter, par.tube);
   chapter.parameter("--alpha", par.alpha, "bulk (linear) viscosity coefficient")
-      .check(app::non_negative());
+      .check(app::between(0.0, 10.0));
   chapter.parameter("--beta", par.beta, "von Neumann-Richtmyer (quadratic) coefficient")
-      .check(app::non_negative());
+      .check(app::between(0.0, 20.0));
   chapter.parameter("--nu2", par.nu2, "nu^2 / h^2 in mu_ij (Monaghan: 0.01; Selhammar: 1e-4)")
-      .check(app::positive());
-  chapter.parameter("--t-end", par.t_end, "time at which the tubes are compared")
-      .check(app::between(1e-6, 0.25));
-  chapter.parameter("--sod-1d", par.sod_1d, "1D: particles per unit length on the dense side")
-      .check(app::at_least(50));
-  chapter.parameter("--sod-2d", par.sod_2d, "2D: particles per unit length on the dense side")
-      .check(app::at_least(24));
-  chapter.parameter("--sod-3d", par.sod_3d, "3D: particles per unit length on the dense side")
-      .check(app::at_least(16));
-  chapter.parameter("--neighbours-1d", par.neighbours_1d, "1D: N in h = N m / (4 rho)")
-      .check(app::between(2.0, 20.0));
-  chapter.parameter("--neighbours-3d", par.neighbours_3d, "3D: neighbour number for Sod")
-      .check(app::between(8.0, 400.0));
+      .check(app::between(1e-8, 1.0));
+  // Steps 1 and 3 measure Sod's pattern of waves, a rarefaction moving left and a shock moving
+  // right (colliding gases, say, make two shocks and no plateau behind a rarefaction).
+  chapter.require(
+      [&par] {
+        const sph::RiemannSolution exact(par.tube.left, par.tube.right, par.tube.gamma);
+        return exact.left_wave().kind == sph::WaveKind::rarefaction &&
+               exact.right_wave().kind == sph::WaveKind::shock;
+      },
+      [&par] {
+        const sph::RiemannSolution exact(par.tube.left, par.tube.right, par.tube.gamma);
+        return "the tube's states (--rho-left ... --p-right) must make a rarefaction on the left "
+               "and a shock on the right, as Sod's do; these make " +
+               exact.describe();
+      });
+  chapter
+      .parameter("--t-end", par.t_end,
+                 "time at which the tubes are compared (earlier than 0.05, Step 3's plateau "
+                 "holds no particle)")
+      .check(app::between(0.05, 0.25));
+  // (the tubes' particles: 1.125 n in 1D, 1.125 n^2 / 8 in 2D, 1.125 n^3 / 64 in 3D)
+  chapter.parameter("--sod-1d", par.sod_1d, "1D: particles per unit length on the dense side", 800)
+      .check(app::count_between(256, 12800, [](double n) { return app::particle_bytes(1, n); }));
+  chapter.parameter("--sod-2d", par.sod_2d, "2D: particles per unit length on the dense side", 64)
+      .check(app::count_between(
+          24, 600, [](double n) { return app::particle_bytes(2, 1.125 * n * n / 8); }));
+  chapter.parameter("--sod-3d", par.sod_3d, "3D: particles per unit length on the dense side", 32)
+      .check(app::count_between(
+          20, 160, [](double n) { return app::particle_bytes(3, 1.125 * n * n * n / 64); }));
+  // Below N = 8/3 the rule has no fixed point: as h shrinks, the density tends to a particle's
+  // own term 2m / (3h), and h = N m / (4 rho) = 3N h / 8 shrinks further, to zero.
+  chapter
+      .parameter("--neighbours-1d", par.neighbours_1d,
+                 "1D: N in h = N m / (4 rho) (below 8/3, h collapses to zero; above 6, Step 5's "
+                 "coarsest Sod tube has no interior)")
+      .check(app::between(2.7, 6.0));
+  // A tube's masses are calibrated on the interior of each side, 1.5 kernel supports from both
+  // ends.  At n particles per unit length on the left, h = N rho_left / (4 n rho) on a side of
+  // density rho, so the thinner side has an interior only for n > 1.5 N rho_left / rho_thin;
+  // its lattice, a whole number of particles, and its largest h ask for more: we require
+  // n >= 2 N rho_left / rho_thin (16 N for Sod).  The coarsest 1D tubes are Step 1's, at a
+  // quarter of --sod-1d, and Step 5's, at 100 (--quick) or 200.
+  const auto coarsest_1d = [&chapter, &par] {
+    return std::min(par.sod_1d / 4, chapter.quick() ? 100 : 200);
+  };
+  const auto least_1d = [&par] {
+    const sph::ShockTubeSetup& tube = par.tube;
+    return 2 * par.neighbours_1d * tube.left.density /
+           std::min(tube.left.density, tube.right.density);
+  };
+  chapter.require([=] { return coarsest_1d() >= least_1d(); },
+                  [=, &par] {
+                    return "--neighbours-1d " + app::show(par.neighbours_1d) + " needs at least " +
+                           app::show(least_1d(), 3) +
+                           " particles per unit length in every 1D tube (a quarter of --sod-1d " +
+                           "in Step 1), else the thinner side has no interior; the coarsest " +
+                           "has " + app::show(coarsest_1d());
+                  });
+  chapter
+      .parameter("--neighbours-3d", par.neighbours_3d,
+                 "3D: neighbour number for Sod (above 110, Step 5's coarsest Sod tube has no "
+                 "interior)")
+      .check(app::between(8.0, 110.0));
+  // The same in 3D, where N neighbours within 2h give h = (3 N m / (32 pi rho))^(1/3): the
+  // thinner side has an interior for n > 6 (3 N rho_left / (32 pi rho_thin))^(1/3), and we
+  // require 8 (n >= 19.4 for Sod at N = 60).  The coarsest 3D tubes are --sod-3d's and Step 5's,
+  // at 24.
+  const auto least_3d = [&par] {
+    const sph::ShockTubeSetup& tube = par.tube;
+    return 8 * std::cbrt(3 * par.neighbours_3d * tube.left.density /
+                         (32 * std::numbers::pi * std::min(tube.left.density, tube.right.density)));
+  };
+  chapter.require([=, &par] { return std::min(par.sod_3d, 24) >= least_3d(); },
+                  [=, &par] {
+                    return "--neighbours-3d " + app::show(par.neighbours_3d) + " needs at least " +
+                           app::show(least_3d(), 3) + " particles per unit length in every 3D " +
+                           "tube (--sod-3d, and 24 in Step 5), else the thinner side has no " +
+                           "interior; the coarsest has " + app::show(std::min(par.sod_3d, 24));
+                  });
 }
 
-void set_resolution(Parameters& par, bool quick) {
-  par.quick = quick;
-  if (quick) {
-    par.sod_1d = 800;
-    par.sod_2d = 64;
-    par.sod_3d = 32;
-  }
-}
+void set_resolution(Parameters& par, bool quick) { par.quick = quick; }
 
 /// The program's first lines name the scheme, so that an output found on its own says what
 /// made it.
@@ -282,7 +344,7 @@ void print_headline(const Parameters& par) {
 /// the momentum drift of the finer run, against the momentum scale of chapter 3, and the
 /// criterion that limited its last full step.  It draws `sod_1d.png` (the
 /// finer run against the exact solution) and writes that run's final state as a SPLASH
-/// snapshot, `sod_1d_t0.2.dat`.
+/// snapshot, `sod_1d_t0.2.dat` (the name carries the output time, `--t-end`).
 ///
 /// The contact deserves a word.  It carries no jump in pressure or velocity, only in density
 /// and internal energy, so neither the pressure force nor the viscosity, which acts only
@@ -363,8 +425,8 @@ Sod1D step1_sod_1d(const app::Chapter& chapter, const Parameters& par) {
     app::shock_tube_figure({app::make_profile(run.particles, "SPH")}, run.exact, par.t_end,
                            "Sod shock tube in 1D, t = " + format("%g", par.t_end), stamp)
         .save_png(chapter.figure_path("sod_1d.png").string());
-    sph::write_snapshot(chapter.figure_path("sod_1d_t0.2.dat").string(), run.particles, par.t_end,
-                        sod.gamma);
+    sph::write_snapshot(chapter.figure_path(format("sod_1d_t%g.dat", par.t_end)).string(),
+                        run.particles, par.t_end, sod.gamma);
   }
   return result;
 }
@@ -471,7 +533,7 @@ EtaScan step2_lattice_sums(const app::Chapter& chapter, const Parameters& par) {
   plot::Figure fig(1, 2, {.width = 1500, .height = 600});
   fig.title("Why h = \\Delta x in 1D: lattice sums of the M4 kernel and the Sod error");
   fig.stamp(plot::Stamp{par.viscosity().describe(), "M4", -1, -1, -1,
-                        "1D Sod, t = 0.2, N(window) = " + std::to_string(in_window)});
+                        format("1D Sod, t = %g, N(window) = %d", par.t_end, in_window)});
   fig.panel(0)
       .xlabel("h/\\Delta x")
       .ylabel("|lattice sum - 1|")
@@ -567,7 +629,10 @@ double plateau_pressure(const app::TubeRun<D>& run, double t) {
     sum += run.particles.pressure[i];
     ++n;
   }
-  sph::require(n > 0, "plateau pressure: no particle between the rarefaction and the contact");
+  sph::require(n > 0,
+               "plateau pressure: no particle between the rarefaction and the contact at "
+               "t = " +
+                   app::show(t) + " (a later --t-end widens the plateau)");
   return sum / n;
 }
 

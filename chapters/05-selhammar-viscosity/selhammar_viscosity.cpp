@@ -222,22 +222,24 @@ struct Parameters {
 };
 
 void declare_parameters(app::Chapter& chapter, Parameters& par) {
+  // (the switch runs from 0.1 up to alpha, so alpha may not be below 0.1)
   chapter.parameter("--alpha", par.alpha, "standard viscosity: alpha (and the switch's maximum)")
-      .check(app::between(0.0, 10.0));
+      .check(app::between(0.1, 10.0));
   chapter.parameter("--beta", par.beta, "beta of the standard and the restricted vNR term")
       .check(app::between(0.0, 20.0));
   chapter.parameter("--eta", par.eta, "eta of the collective term").check(app::between(0.0, 100.0));
   chapter.parameter("--nu2", par.nu2, "nu^2 / h^2 in mu_ij (Selhammar: 1e-4)")
       .check(app::between(1e-8, 1.0));
+  // (at 0.9 a particle of a 1D shock tube is left with negative internal energy)
   chapter.parameter("--courant", par.courant, "epsilon of the time step (eq 7)")
-      .check(app::between(0.01, 0.9));
+      .check(app::between(0.01, 0.8));
   chapter
       .parameter("--tube-cells", par.tube_cells,
-                 "weak tube: cells across the dense slab (even; 4 n^3 particles)")
+                 "weak tube: cells across the dense slab (even; 4 n^3 particles)", 8)
       .check(app::between(4, 40))
       ->check(app::require<int>([](int n) { return n % 2 == 0; }, "must be even"));
-  chapter.parameter("--sphere", par.sphere_particles, "homologous sphere: particles")
-      .check(app::between(256, 200000));
+  chapter.parameter("--sphere", par.sphere_particles, "homologous sphere: particles", 1024)
+      .check(app::count_between(256, 200000, [](double n) { return app::particle_bytes(3, n); }));
   chapter.flag("--printed-normalisation", par.printed_normalisation,
                "collective term: divide by 1 - w_i as printed (default: Shepard)");
   chapter.flag("--explicit", par.explicit_kick,
@@ -250,11 +252,7 @@ void declare_parameters(app::Chapter& chapter, Parameters& par) {
 
 void set_resolution(Parameters& par, bool quick) {
   par.quick = quick;
-  if (quick) {
-    par.tube_cells = 8;
-    par.sphere_particles = 1024;
-    par.boost_particles = 256;
-  }
+  if (quick) par.boost_particles = 256;  // (not an option)
 }
 
 void print_headline(const Parameters& par) {

@@ -189,8 +189,9 @@ struct Parameters {
 };
 
 void declare_parameters(app::Chapter& chapter, Parameters& par) {
+  // (the switch runs from 0.1 up to alpha, so alpha may not be below 0.1)
   chapter.parameter("--alpha", par.alpha, "standard viscosity: alpha (and the switch's maximum)")
-      .check(app::between(0.0, 10.0));
+      .check(app::between(0.1, 10.0));
   chapter.parameter("--beta", par.beta, "beta of the standard and the restricted vNR term")
       .check(app::between(0.0, 20.0));
   chapter.parameter("--eta", par.eta, "eta of the collective term").check(app::between(0.0, 100.0));
@@ -202,23 +203,20 @@ void declare_parameters(app::Chapter& chapter, Parameters& par) {
       .parameter("--softening", par.softening,
                  "gravitational softening length (0: each particle's smoothing length)")
       .check(app::between(0.0, 1.0));
-  chapter.parameter("--particles", par.particles, "particles of Figs 5-7 (Selhammar: 8192)")
-      .check(app::between(512, 200000));
+  chapter.parameter("--particles", par.particles, "particles of Figs 5-7 (Selhammar: 8192)", 1024)
+      .check(app::count_between(512, 200000, [](double n) { return app::particle_bytes(3, n); }));
   chapter
       .parameter("--largest", par.largest,
                  "largest particle number of the error-against-run-time series (from 1024, "
-                 "doubling)")
-      .check(app::between(2048, 262144));
-  chapter.parameter("--t-end", par.t_end, "end of the runs of Fig 5")
+                 "doubling)",
+                 2048)
+      .check(app::count_between(2048, 262144, [](double n) { return app::particle_bytes(3, n); }));
+  chapter.parameter("--t-end", par.t_end, "end of the runs of Fig 5", 1.3)
       .check(app::between(0.9, 10.0));
 }
 
 void set_resolution(Parameters& par, bool quick) {
-  par.quick = quick;
-  if (!quick) return;
-  par.particles = std::min(par.particles, 1024);
-  par.largest = std::min(par.largest, 2048);
-  par.t_end = std::min(par.t_end, 1.3);
+  par.quick = quick;  // (the resolutions that are options have their quick defaults)
 }
 
 // --- small tools ---------------------------------------------------------------------------

@@ -1384,7 +1384,7 @@ int main(int argc, char** argv) {
                          argc, argv);
     Parameters par;
     chapter.parameter("--particles", par.particles, "particles in the unit box (Watkins: 5000)")
-        .check(app::between(500, 200000));
+        .check(app::count_between(500, 200000, [](double n) { return app::particle_bytes(3, n); }));
     chapter.parameter("--neighbours-2d", par.neighbours_2d, "expected neighbours in 2D")
         .check(app::between(8, 400));
     chapter.parameter("--neighbours-3d", par.neighbours_3d, "expected neighbours in 3D")

@@ -9,6 +9,7 @@
 #include <cmath>
 #include <cstdio>
 #include <fstream>
+#include <map>
 #include <memory>
 #include <sstream>
 #include <stdexcept>
@@ -22,14 +23,36 @@ namespace app {
 
 // ---- Validators -------------------------------------------------------------------------------
 
+std::string show(double number, int digits) {
+  char text[64];
+  std::snprintf(text, sizeof text, "%.*g", std::clamp(digits, 1, 17), number);
+  return text;
+}
+
+double particle_bytes(int dimension, double particles) {
+  // An estimate, rounded up: a particle's fields are some 20 numbers (170 bytes in 3D), and its
+  // neighbour list, which dominates, some 60 pairs of 8 bytes in 3D, 30 in 2D and 4 to 8 in 1D,
+  // kept from both sides; a run keeps a few copies of the particles besides.
+  const double per_particle = dimension == 1 ? 200.0 : dimension == 2 ? 500.0 : 1000.0;
+  return per_particle * particles;
+}
+
+std::string show_bytes(double bytes) {
+  const char* units[] = {"B", "kB", "MB", "GB", "TB", "PB", "EB"};
+  int unit = 0;
+  while (bytes >= 1000 && unit < 6) {
+    bytes /= 1000;
+    ++unit;
+  }
+  return show(bytes, 3) + " " + units[unit];
+}
+
 namespace {
 
-/// Shortest decimal form of a bound for messages: 1 rather than 1.000000.
-std::string show(double number) {
-  std::ostringstream text;
-  text.precision(12);
-  text << number;
-  return text.str();
+/// The value as the message quotes it: as typed, unless that is long ("1000...0" with 300
+/// digits), then as %g prints it.
+std::string quoted(const std::string& input, double value) {
+  return input.size() <= 16 ? input : app::show(value);
 }
 
 /// A validator that reads the value as a number and applies \p accept; \p problem is the
@@ -45,7 +68,7 @@ CLI::Validator numeric(std::function<bool(double)> accept, const std::string& pr
         if (!std::isfinite(value)) {
           return "must be a finite number, got " + input;
         }
-        return accept(value) ? std::string() : problem + ", got " + input;
+        return accept(value) ? std::string() : problem + ", got " + quoted(input, value);
       },
       description);
 }
@@ -54,6 +77,8 @@ CLI::Validator numeric(std::function<bool(double)> accept, const std::string& pr
 ///   --gamma FLOAT              adiabatic index (default 1.4; > 1)
 class HelpFormatter : public CLI::Formatter {
  public:
+  using QuickNotes = std::map<const CLI::Option*, std::string>;
+  explicit HelpFormatter(std::shared_ptr<const QuickNotes> quick) : quick_(std::move(quick)) {}
   std::string make_option_opts(const CLI::Option* option) const override {
     if (option->get_type_size() == 0) return "";
     const std::string type = option->get_type_name();
@@ -63,6 +88,9 @@ class HelpFormatter : public CLI::Formatter {
     std::string details;
     if (option->get_type_size() != 0 && !option->get_default_str().empty()) {
       details = "default " + option->get_default_str();
+      if (auto note = quick_->find(option); note != quick_->end()) {
+        details += ", with --quick " + note->second;
+      }
     }
     const std::string type = option->get_type_name();
     for (auto colon = type.find(':'); colon != std::string::npos;) {
@@ -72,6 +100,9 @@ class HelpFormatter : public CLI::Formatter {
     }
     return option->get_description() + (details.empty() ? "" : " (" + details + ")");
   }
+
+ private:
+  std::shared_ptr<const QuickNotes> quick_;
 };
 
 }  // namespace
@@ -82,12 +113,18 @@ CLI::Validator finite() {
 CLI::Validator whole_number() {
   return CLI::Validator(
       [](std::string& input) -> std::string {
-        long long value = 0;
-        if (CLI::detail::lexical_cast(input, value)) return {};
+        // (read as a number first: a conversion to an integer would clamp 1e300's digits)
         double number = 0.0;
-        return CLI::detail::lexical_cast(input, number)
-                   ? "must be a whole number, got " + input
-                   : "expected a whole number, got '" + input + "'";
+        if (!CLI::detail::lexical_cast(input, number)) {
+          return "expected a whole number, got '" + input + "'";
+        }
+        if (!std::isfinite(number) || number != std::floor(number)) {
+          return "must be a whole number, got " + quoted(input, number);
+        }
+        if (std::abs(number) > 1e18) return "is far too large, got " + quoted(input, number);
+        // In digits, for the range checks that follow and the conversion: 2e9 is 2000000000.
+        input = std::to_string(static_cast<long long>(number));
+        return {};
       },
       "");
 }
@@ -118,6 +155,24 @@ CLI::Validator between(double low, double high) {
   return numeric([low, high](double x) { return low <= x && x <= high; }, "must lie in " + range,
                  "in " + range);
 }
+CLI::Validator count_between(double low, double high, std::function<double(double)> bytes) {
+  const std::string range = "[" + show(low) + ", " + show(high) + "]";
+  return CLI::Validator(
+      [low, high, range, bytes = std::move(bytes)](std::string& input) -> std::string {
+        double value = 0.0;
+        if (!CLI::detail::lexical_cast(input, value)) {
+          return "expected a number, got '" + input + "'";
+        }
+        if (!std::isfinite(value)) return "must be a finite number, got " + input;
+        if (value < low) return "must lie in " + range + ", got " + quoted(input, value);
+        if (value > high) {
+          return app::show(value) + " would need about " + show_bytes(bytes(value)) +
+                 " of memory; at most " + show(high);
+        }
+        return {};
+      },
+      "in " + range);
+}
 
 int max_threads() { return std::max(64, 8 * omp_get_num_procs()); }
 
@@ -147,7 +202,7 @@ Chapter::Chapter(std::string name, std::string title, int argc, char** argv)
       ->check(between(0, max_threads()))
       ->group("Run options");
   cli_.get_help_ptr()->group("Run options");
-  cli_.formatter(std::make_shared<HelpFormatter>());
+  cli_.formatter(std::make_shared<HelpFormatter>(quick_notes_));
 
   // Errors read "ch: error: --gamma: must be greater than 1, got 0.5".
   cli_.failure_message([name = name_](const CLI::App* app, const CLI::Error& error) {
@@ -174,6 +229,10 @@ CLI::Option& Chapter::flag(const std::string& flag, bool& value, const std::stri
 }
 
 void Chapter::require(std::function<bool()> condition, std::string problem) {
+  require(std::move(condition), [problem = std::move(problem)] { return problem; });
+}
+
+void Chapter::require(std::function<bool()> condition, std::function<std::string()> problem) {
   requirements_.push_back({std::move(condition), std::move(problem)});
 }
 
@@ -185,10 +244,17 @@ int Chapter::parse() {
     return cli_.exit(error, *out_, *err_);
   }
 
+  // Apply the quick defaults of the options not given.
+  if (quick_) {
+    for (const QuickDefault& quick : quick_defaults_) {
+      if (quick.option->count() == 0) quick.set();
+    }
+  }
+
   // Check the conditions between parameters.
   for (const Requirement& requirement : requirements_) {
     if (!requirement.condition()) {
-      *err_ << name_ << ": error: " << requirement.problem << "\n"
+      *err_ << name_ << ": error: " << requirement.problem() << "\n"
             << "Run with --help for more information.\n";
       return static_cast<int>(CLI::ExitCodes::ValidationError);
     }
@@ -208,6 +274,7 @@ int Chapter::parse() {
           << (failure ? failure.message() : "not a directory") << "\n";
     return static_cast<int>(CLI::ExitCodes::FileError);
   }
+  remove_previous_outputs();
   parsed_ = true;
   summary_.clear();
   summary("chapter", name_);
@@ -217,7 +284,71 @@ int Chapter::parse() {
   return -1;
 }
 
+bool Chapter::given(const std::string& flag) const { return cli_.count(flag) > 0; }
+
+namespace {
+
+const char* const files_list = "files.txt";  // the files the last run wrote, one a line
+
+/// True for a plain file name, which can only name a file directly in the output directory.
+bool plain_name(const std::string& file) {
+  return !file.empty() && file != "." && file != ".." &&
+         file.find_first_of("/\\") == std::string::npos;
+}
+
+/// Whether \p summary is a summary.txt written by the chapter called \p name.
+bool written_by(const std::filesystem::path& summary, const std::string& name) {
+  std::ifstream file(summary);
+  for (std::string line; std::getline(file, line);) {
+    if (line == "chapter = " + name) return true;
+  }
+  return false;
+}
+
+}  // namespace
+
+void Chapter::remove_previous_outputs() const {
+  // The files the previous run recorded, when it did; else, in a directory whose summary.txt
+  // names this chapter, its figures and snapshots.
+  std::vector<std::filesystem::path> previous;
+  const std::filesystem::path list = output_dir_ / files_list;
+  if (std::filesystem::exists(list)) {
+    std::ifstream file(list);
+    for (std::string line; std::getline(file, line);) {
+      if (plain_name(line)) previous.push_back(output_dir_ / line);
+    }
+  } else if (written_by(output_dir_ / "summary.txt", name_)) {
+    for (const auto& entry : std::filesystem::directory_iterator(output_dir_)) {
+      const std::string extension = entry.path().extension().string();
+      if (entry.is_regular_file() && (extension == ".png" || extension == ".dat")) {
+        previous.push_back(entry.path());
+      }
+    }
+  }
+  previous.push_back(output_dir_ / "summary.txt");
+  for (const std::filesystem::path& path : previous) {
+    std::error_code ignored;  // a file already gone is fine
+    std::filesystem::remove(path, ignored);
+  }
+
+  // Start this run's list.
+  written_.clear();
+  std::ofstream file(list);
+  file << "summary.txt\n";
+  if (!file) throw std::runtime_error("cannot write " + list.string());
+}
+
 std::filesystem::path Chapter::figure_path(const std::string& file) const {
+  if (!plain_name(file)) {
+    throw std::invalid_argument("app::Chapter::figure_path: \"" + file +
+                                "\" must be a file name without a directory");
+  }
+  if (parsed_ && std::find(written_.begin(), written_.end(), file) == written_.end()) {
+    written_.push_back(file);
+    std::ofstream list(output_dir_ / files_list, std::ios::app);
+    list << file << "\n";
+    if (!list) throw std::runtime_error("cannot write " + (output_dir_ / files_list).string());
+  }
   return output_dir_ / file;
 }
 

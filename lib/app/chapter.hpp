@@ -16,11 +16,10 @@
 ///     int particles = 450;
 ///     double t_end = 0.2;
 ///     chapter.parameter("--gamma", gamma, "adiabatic index").check(app::greater_than(1.0));
-///     chapter.parameter("--particles", particles, "particles on the high-density side")
-///         .check(app::at_least(10));
-///     chapter.parameter("--t-end", t_end, "end time").check(app::positive());
+///     chapter.parameter("--particles", particles, "particles on the high-density side", 50)
+///         .check(app::between(10, 100000));      // 50 with --quick, unless given
+///     chapter.parameter("--t-end", t_end, "end time").check(app::between(1e-6, 10));
 ///     if (int rc = chapter.parse(); rc >= 0) return rc;   // --help, or a bad option
-///     if (chapter.quick()) particles = 50;
 ///
 ///     app::Progress progress(t_end, "Sod 1D");
 ///     // ... for each step: progress.update(step, t, dt);
@@ -28,8 +27,8 @@
 ///     // ... plot into chapter.figure_path("sod_1d.png")
 ///
 ///     double l1 = 0.0021;
-///     chapter.summary("error", "L1(rho) = " + std::to_string(l1));
-///     chapter.check(l1 < 0.003, "L1(rho) = " + std::to_string(l1) + " exceeds 0.003");
+///     chapter.summary("error", "L1(rho) = " + app::format("%g", l1));
+///     chapter.check(l1 < 0.003, "L1(rho) = " + app::format("%g", l1) + " exceeds 0.003");
 ///     return chapter.finish();   // non-zero if a check failed
 ///   });
 /// }
@@ -39,6 +38,29 @@
 /// parameters.  An unknown option or an impossible value stops the program before it runs,
 /// with a message on standard error naming the option and the problem, and a non-zero exit
 /// status (CLI11's exit codes: 105 for a rejected value, 109 for an unknown option, ...).
+///
+/// **Ranges.**  Every numeric parameter has a range that `--help` states and parse() enforces
+/// before any work starts: counts have an upper bound as well as a lower one, so that no value
+/// can run for hours or ask for more memory than a machine has (app::count_between says, for a
+/// count that is too large, how much memory it would need).
+///
+/// **Quick defaults.**  `--quick` changes the defaults of the resolution parameters, never an
+/// option given on the command line: a parameter declared with a quick value
+/// (`parameter(flag, value, description, quick_value)`) takes that value under `--quick` only
+/// when the option is absent, and `--help` shows both defaults.  given() tells whether an
+/// option was on the command line, for the rare default that depends on other options.
+///
+/// **Output files.**  A reader must never find the figures of two runs side by side in one
+/// output directory, as a run that stops half-way into a used directory would leave them.  So
+/// every file a chapter writes is named through figure_path(), which records it in `files.txt`
+/// of the output directory as it is handed out; parse() first removes the files that the
+/// previous run recorded there (and, in a directory written before `files.txt` existed, the
+/// `.png` and `.dat` files of a directory whose summary.txt names this chapter).  Nothing else is
+/// removed, so `--output` may name a directory that holds other files.  A directory that is
+/// being written therefore holds the files of one run only, finished or not; summary.txt says
+/// which (its `checks` and `run_time` lines are written at the end).  We preferred this to
+/// writing into a temporary directory renamed at the end: a run that stops keeps what it made
+/// for inspection, and no rename has to replace a directory that other files share.
 
 #include <CLI/CLI.hpp>
 
@@ -46,6 +68,9 @@
 #include <functional>
 #include <iostream>
 #include <string>
+#include <map>
+#include <memory>
+#include <sstream>
 #include <type_traits>
 #include <utility>
 #include <vector>
@@ -62,7 +87,8 @@ namespace app {
 
 /// Accepts any finite number (rejects `nan`, `inf`).  Added to every floating-point parameter.
 CLI::Validator finite();
-/// Accepts whole numbers (rejects `3.5`).  Added to every integer parameter.
+/// Accepts whole numbers (rejects `3.5`), and writes one given as `2e9` in digits, so that it
+/// reaches the range checks and the conversion.  Added to every integer parameter.
 CLI::Validator whole_number();
 /// Accepts numbers > 0.
 CLI::Validator positive();
@@ -78,6 +104,21 @@ CLI::Validator less_than(double bound);
 CLI::Validator at_most(double bound);
 /// Accepts numbers in the closed interval [\p low, \p high].
 CLI::Validator between(double low, double high);
+/// Accepts counts in [\p low, \p high].  A larger value is refused with the memory it would
+/// need, `bytes(value)` bytes (a count of particles, or of particles per unit length in a
+/// 3D box): "--particles: 2e+09 would need about 400 GB of memory; at most 200000".
+CLI::Validator count_between(double low, double high, std::function<double(double)> bytes);
+
+/// The memory that \p particles simulated particles take in \p dimension dimensions, with their
+/// neighbour lists and the copies a run keeps, generously: what count_between quotes for a
+/// particle count that is too large.
+double particle_bytes(int dimension, double particles);
+
+/// A number as `%g` prints it, with up to \p digits significant digits: 0.2, 1e-06, 2e+09,
+/// 3200; never 0.000000 or a long run of digits.
+std::string show(double number, int digits = 6);
+/// A size in bytes, readably: "512 B", "3.1 MB", "400 GB".
+std::string show_bytes(double bytes);
 
 /// The largest `--threads` a chapter accepts: 8 per core of this machine, and at least 64.
 int max_threads();
@@ -123,9 +164,24 @@ class Chapter {
     if constexpr (std::is_floating_point_v<T>) {
       option->check(finite());
     } else if constexpr (std::is_integral_v<T> && !std::is_same_v<T, bool>) {
-      option->check(whole_number());
+      option->transform(whole_number());  // (a transform: it may rewrite 2e9 as 2000000000)
     }
     return *option;
+  }
+
+  /// The same, with a quick default: under `--quick`, parse() sets \p value to \p quick_value
+  /// unless the option is given on the command line, which always wins.  `--help` shows
+  /// "(default 800, with --quick 400; ...)".  The quick value must lie in the option's range.
+  template <class T>
+  CLI::Option& parameter(const std::string& flag, T& value, const std::string& description,
+                         std::type_identity_t<T> quick_value) {
+    CLI::Option& option = parameter(flag, value, description);
+    std::ostringstream text;
+    text.precision(12);
+    text << quick_value;
+    quick_defaults_.push_back({&option, [&value, quick_value] { value = quick_value; }});
+    (*quick_notes_)[&option] = text.str();
+    return option;
   }
 
   /// Declares an on/off switch `flag` (e.g. `"--no-viscosity"`) that sets \p value to true.
@@ -134,6 +190,9 @@ class Chapter {
   /// Declares a condition between parameters that parse() checks after reading them, e.g.
   /// `chapter.require([&] { return h_min < h_max; }, "--h-min must be smaller than --h-max")`.
   void require(std::function<bool()> condition, std::string problem);
+  /// The same, with the message made when the condition fails, so that it can quote the
+  /// values: `[&] { return "--neighbours " + app::show(n) + " needs --cells >= ..."; }`.
+  void require(std::function<bool()> condition, std::function<std::string()> problem);
 
   /// Reads the command line.  Returns -1 when the program should go on; otherwise the exit
   /// status to return from main(): 0 after `--help`, non-zero after an error, which has been
@@ -143,11 +202,16 @@ class Chapter {
 
   /// True with `--quick`: a reduced resolution that runs in seconds, used by the tests.
   [[nodiscard]] bool quick() const { return quick_; }
+  /// True when the option \p flag (any of its names, e.g. `"--cells"`) was given on the
+  /// command line.  Call after parse().  An undeclared flag throws.
+  [[nodiscard]] bool given(const std::string& flag) const;
   /// The `--threads` value; 0 means all the machine's cores (OpenMP's default).
   [[nodiscard]] int threads() const { return threads_; }
   /// The directory for figures and summary.txt (`--output`), created by parse().
   [[nodiscard]] const std::filesystem::path& output_dir() const { return output_dir_; }
-  /// The path of a figure (or any output file) called \p file in the output directory.
+  /// The path of a figure (or any output file) called \p file in the output directory, which
+  /// records \p file in the directory's `files.txt`, so that the next run removes it before it
+  /// starts (see "Output files" above).  \p file is a plain name, without a directory.
   [[nodiscard]] std::filesystem::path figure_path(const std::string& file) const;
   /// The chapter's name, e.g. `"01-kernel"`.
   [[nodiscard]] const std::string& name() const { return name_; }
@@ -202,11 +266,17 @@ class Chapter {
  private:
   void print_claim(const std::string& tag, const std::string& what);
   void write_summary() const;
+  void remove_previous_outputs() const;
   static void require_dashes(const std::string& flag);
+
+  struct QuickDefault {
+    const CLI::Option* option;
+    std::function<void()> set;  // sets the bound variable to the quick value
+  };
 
   struct Requirement {
     std::function<bool()> condition;
-    std::string problem;
+    std::function<std::string()> problem;
   };
   struct Check {
     bool ok;
@@ -226,6 +296,11 @@ class Chapter {
   std::filesystem::path output_dir_;
   bool parsed_ = false;
   std::vector<Requirement> requirements_;
+  std::vector<QuickDefault> quick_defaults_;
+  // the quick value of each option that has one, shared with the help formatter
+  std::shared_ptr<std::map<const CLI::Option*, std::string>> quick_notes_ =
+      std::make_shared<std::map<const CLI::Option*, std::string>>();
+  mutable std::vector<std::string> written_;  // the files handed out by figure_path()
   std::vector<std::pair<std::string, std::string>> summary_;
   std::vector<Check> checks_;
   std::ostream* out_ = &std::cout;

@@ -119,6 +119,17 @@ TEST_CASE("an impossible value is an error naming the option and the problem", "
     CHECK(result.code > 0);
     CHECK(result.err.find("--particles: must be a whole number") != std::string::npos);
   }
+  SECTION("a huge number is quoted readably") {
+    const Parsed result = parse({"ch99", "--particles", "1" + std::string(300, '0')});
+    CHECK(result.code > 0);
+    CHECK(result.err.find("--particles: is far too large, got 1e+300") != std::string::npos);
+  }
+  SECTION("a whole number may be written with an exponent") {
+    const fs::path dir = scratch("exponent");
+    const Parsed result = parse({"ch99", "--particles", "2e3", "--output", dir.string()});
+    CHECK(result.code == -1);
+    CHECK(result.particles == 2000);
+  }
   SECTION("a missing value") {
     const Parsed result = parse({"ch99", "--gamma"});
     CHECK(result.code > 0);
@@ -165,6 +176,25 @@ TEST_CASE("a condition between parameters is checked by parse", "[app]") {
   chapter.require([&] { return h_min < h_max; }, "--h-min must be smaller than --h-max");
   CHECK(chapter.parse() > 0);
   CHECK(err.str().find("--h-min must be smaller than --h-max") != std::string::npos);
+}
+
+TEST_CASE("a condition's message can quote the values read", "[app]") {
+  CommandLine line({"ch99", "--neighbours", "12", "--quick", "--output", scratch("why").string()});
+  app::Chapter chapter("99-test", "Chapter 99: a test", line.argc(), line.argv());
+  std::ostringstream out, err;
+  chapter.set_streams(out, err);
+  double neighbours = 4;
+  int cells = 800;
+  chapter.parameter("--neighbours", neighbours, "neighbours");
+  chapter.parameter("--cells", cells, "cells", 400);
+  chapter.require([&] { return cells >= 50 * neighbours; },
+                  [&] {
+                    return "--neighbours " + app::show(neighbours) +
+                           " needs --cells >= " + app::show(50 * neighbours) + ", got " +
+                           app::show(cells);
+                  });
+  CHECK(chapter.parse() > 0);  // (the condition sees the quick default)
+  CHECK(err.str().find("--neighbours 12 needs --cells >= 600, got 400") != std::string::npos);
 }
 
 TEST_CASE("summary.txt holds key = value lines, later values replacing earlier", "[app]") {
@@ -303,4 +333,140 @@ TEST_CASE("a claim found not to reproduce is checked as such, and fails if it re
   CHECK(out.str().find("  [reproduced] reported\n") != std::string::npos);
   CHECK(chapter.failed_checks() == 1);
   CHECK(chapter.finish() == 1);
+}
+
+namespace {
+
+/// A chapter with a resolution parameter whose quick default is 40 (default 400).
+struct QuickRun {
+  int code;
+  int cells;
+  bool given;
+  std::string help;
+};
+
+QuickRun quick_run(std::vector<std::string> words) {
+  words.insert(words.begin(), "ch99");
+  words.insert(words.end(), {"--output", scratch("quick").string()});
+  CommandLine line(words);
+  app::Chapter chapter("99-test", "Chapter 99: a test", line.argc(), line.argv());
+  std::ostringstream out, err;
+  chapter.set_streams(out, err);
+  int cells = 400;
+  chapter.parameter("--cells", cells, "cells per unit length", 40).check(app::between(10, 4000));
+  const int code = chapter.parse();
+  return {code, cells, code == -1 && chapter.given("--cells"), out.str()};
+}
+
+}  // namespace
+
+TEST_CASE("an option given on the command line wins over its quick default", "[app]") {
+  SECTION("the default without --quick") {
+    const QuickRun run = quick_run({});
+    CHECK(run.code == -1);
+    CHECK(run.cells == 400);
+    CHECK_FALSE(run.given);
+  }
+  SECTION("the quick default with --quick") {
+    const QuickRun run = quick_run({"--quick"});
+    CHECK(run.code == -1);
+    CHECK(run.cells == 40);
+    CHECK_FALSE(run.given);
+  }
+  SECTION("the given value, before or after --quick") {
+    for (const auto& words : std::vector<std::vector<std::string>>{{"--quick", "--cells", "2000"},
+                                                                   {"--cells=2000", "--quick"}}) {
+      const QuickRun run = quick_run(words);
+      CHECK(run.code == -1);
+      CHECK(run.cells == 2000);
+      CHECK(run.given);
+    }
+  }
+  SECTION("a given value equal to the full default is kept too") {
+    const QuickRun run = quick_run({"--quick", "--cells", "400"});
+    CHECK(run.cells == 400);
+  }
+  SECTION("--help shows both defaults and the range") {
+    const QuickRun run = quick_run({"--help"});
+    CHECK(run.code == 0);
+    CHECK(run.help.find("(default 400, with --quick 40; in [10, 4000])") != std::string::npos);
+  }
+}
+
+TEST_CASE("a count above its bound is refused with the memory it would need", "[app]") {
+  CommandLine line({"ch99", "--particles", "2e9", "--output", scratch("count").string()});
+  app::Chapter chapter("99-test", "Chapter 99: a test", line.argc(), line.argv());
+  std::ostringstream out, err;
+  chapter.set_streams(out, err);
+  double particles = 1000;
+  chapter.parameter("--particles", particles, "particles")
+      .check(app::count_between(100, 200000, [](double n) { return 200 * n; }));
+  CHECK(chapter.parse() > 0);
+  CHECK(err.str().find("--particles: 2e+09 would need about 400 GB of memory; at most 200000") !=
+        std::string::npos);
+}
+
+TEST_CASE("numbers in messages read as %g prints them", "[app]") {
+  CHECK(app::show(0.2) == "0.2");
+  CHECK(app::show(1e-6) == "1e-06");
+  CHECK(app::show(2e9) == "2e+09");
+  CHECK(app::show(3200) == "3200");
+  CHECK(app::show(1e300) == "1e+300");
+  CHECK(app::show(1.0 / 3.0, 3) == "0.333");
+  CHECK(app::show_bytes(512) == "512 B");
+  CHECK(app::show_bytes(4e11) == "400 GB");
+  CHECK(app::show_bytes(3.14e6) == "3.14 MB");
+}
+
+TEST_CASE("a run removes the files of the previous run in its output directory", "[app]") {
+  const fs::path dir = scratch("cleanup");
+  fs::create_directories(dir);
+  const auto touch = [&dir](const std::string& file) { std::ofstream(dir / file) << "x\n"; };
+  const auto run = [&dir](const std::vector<std::string>& files) {
+    CommandLine line({"ch99", "--output", dir.string()});
+    app::Chapter chapter("99-test", "Chapter 99: a test", line.argc(), line.argv());
+    std::ostringstream out, err;
+    chapter.set_streams(out, err);
+    REQUIRE(chapter.parse() == -1);
+    // (never finished: as a run that stops half-way)
+    for (const std::string& file : files) std::ofstream(chapter.figure_path(file)) << "new\n";
+  };
+  // A file of someone else's is in the directory before the first run.
+  touch("notes.md");
+
+  // The first run writes two figures and a snapshot; the second stops after one figure.
+  run({"a.png", "b.png", "state_t0.1.dat"});
+  CHECK(fs::exists(dir / "b.png"));
+  run({"a.png"});
+  CHECK(read(dir / "a.png") == "new\n");
+  CHECK_FALSE(fs::exists(dir / "b.png"));
+  CHECK_FALSE(fs::exists(dir / "state_t0.1.dat"));
+  CHECK(fs::exists(dir / "notes.md"));
+  CHECK(read(dir / "files.txt") == "summary.txt\na.png\n");
+  CHECK(fs::exists(dir / "summary.txt"));
+
+  SECTION("a directory written before files.txt existed: its figures go if it is this chapter's") {
+    fs::remove(dir / "files.txt");
+    touch("old.png");
+    touch("old.dat");
+    run({});
+    CHECK_FALSE(fs::exists(dir / "old.png"));
+    CHECK_FALSE(fs::exists(dir / "old.dat"));
+    CHECK(fs::exists(dir / "notes.md"));
+  }
+  SECTION("a directory that is not this chapter's keeps its figures") {
+    fs::remove(dir / "files.txt");
+    std::ofstream(dir / "summary.txt") << "chapter = 98-other\n";
+    touch("old.png");
+    run({});
+    CHECK(fs::exists(dir / "old.png"));
+  }
+  SECTION("a name with a directory is refused") {
+    CommandLine line({"ch99", "--output", dir.string()});
+    app::Chapter chapter("99-test", "Chapter 99: a test", line.argc(), line.argv());
+    std::ostringstream out, err;
+    chapter.set_streams(out, err);
+    REQUIRE(chapter.parse() == -1);
+    CHECK_THROWS_AS(chapter.figure_path("../escape.png"), std::invalid_argument);
+  }
 }
