@@ -1199,9 +1199,7 @@ Race step6_fair_race(const app::Chapter& chapter, const Parameters& par) {
     resolutions.push_back(static_cast<int>(std::lround(400 * std::pow(2.0, 0.5 * k))));
   }
   std::printf("  (c) walls and signal velocity (C = 0.6), one thread; time of the whole run\n");
-  std::printf(
-      "      h/dx  grad-h  N(window)  steps  wall [s]  CPU [s]  L1(rho)    L1(v)      other "
-      "code\n");
+  std::printf("      h/dx  grad-h  N(window)  steps  wall [s]  CPU [s]  L1(rho)    L1(v)\n");
   sph::ErrorVsTime study("1D Sod: error against the CPU time of the whole run, one thread");
   std::vector<std::pair<double, double>> ours[2][2][2];  // [eta][grad-h][rho, v]: (time, error)
   const double etas[2] = {1.0, 1.2};
@@ -1221,10 +1219,11 @@ Race step6_fair_race(const app::Chapter& chapter, const Parameters& par) {
         std::string quoted = "";
         for (const Quoted& q : other_code) {
           if (variant == 0 && q.eta == etas[k] && std::abs(q.in_window - n) <= 2) {
-            quoted = format("%ld steps, %.2f s, %.2e, %.1e", q.steps, q.seconds, q.l1_rho, q.l1_v);
+            quoted = format("\n        other code: %ld steps, %.2f s, %.2e, %.1e", q.steps,
+                            q.seconds, q.l1_rho, q.l1_v);
           }
         }
-        std::printf("      %4.1f  %-6s  %9d  %5ld  %8.3f  %7.3f  %.3e  %.3e  %s\n", etas[k],
+        std::printf("      %4.1f  %-6s  %9d  %5ld  %8.3f  %7.3f  %.3e  %.3e%s\n", etas[k],
                     variant ? "yes" : "no", n, run.steps, run.total_seconds, run.cpu_seconds,
                     e[0].L1, e[1].L1, quoted.c_str());
         study.add({method,

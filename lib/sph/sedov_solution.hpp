@@ -51,6 +51,8 @@
 
 namespace sph {
 
+/// The self-similar Sedov-Taylor solution for one \f$ \gamma \f$ and dimension: \f$ \xi_0 \f$,
+/// the shock radius R(t), and density, velocity and pressure at any r and t.
 class SedovSolution {
  public:
   /// A point explosion of energy \p energy in a gas of density \p density and adiabatic index

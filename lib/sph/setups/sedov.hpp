@@ -44,6 +44,8 @@ struct SedovSetup {
   double half_width = 0.5;          ///< the box is [-L, L]^D, periodic
 };
 
+/// A Sedov-Taylor blast ready to run: the particles, the box, and the solution it should
+/// follow.
 template <int D>
 struct SedovBlast {
   Particles<D> particles;

@@ -38,6 +38,8 @@
 
 namespace sph {
 
+/// The pressure term with the grad-h factor: its gradient pass sums \f$ \Omega_i \f$, its
+/// bracket divides each particle's \f$ P/\rho^2 \f$ by it.
 struct PressureGradH {
   static constexpr const char* name = "pressure with the grad-h correction (Springel & Hernquist)";
 
@@ -55,6 +57,7 @@ struct PressureGradH {
     return -(D * Kernel<D>::value(r, h) + r * Kernel<D>::derivative(r, h)) / h;
   }
 
+  /// What the gradient pass sums for particle i.
   template <int D>
   struct GradientSum {
     double total = 0;  ///< \f$ \sum_j m_j \partial W(r_{ij}, h_i)/\partial h_i \f$
