@@ -1040,29 +1040,29 @@ double step5_error_against_run_time(const app::Chapter& chapter, const Parameter
 /// end by \f$ t = 0.2 \f$.  (With `--quick` the coarser tube differs by 15 %: at 113 particles
 /// the smeared waves of the periodic tube's far interface already touch the window's edge,
 /// and the walled tube is the more accurate of the two.)  (c) At \f$ h = \Delta x \f$ our
-/// run of 450 particles takes 634 steps and 0.077 s of CPU for \f$ L_1(\rho) = 1.26\cdot
+/// run of 450 particles takes 634 steps and 0.10 s of CPU for \f$ L_1(\rho) = 1.26\cdot
 /// 10^{-3} \f$ and \f$ L_1(v) = 3.09\cdot 10^{-3} \f$, where the other code takes 693 steps and
-/// 0.18 s for \f$ 2.17\cdot 10^{-3} \f$ and \f$ 4.2\cdot 10^{-3} \f$; at 1800 particles, 1.02 s
+/// 0.18 s for \f$ 2.17\cdot 10^{-3} \f$ and \f$ 4.2\cdot 10^{-3} \f$; at 1800 particles, 1.30 s
 /// for \f$ 3.1\cdot 10^{-4} \f$ and \f$ 7.8\cdot 10^{-4} \f$ against 2.12 s for
-/// \f$ 5.4\cdot 10^{-4} \f$ and \f$ 1.1\cdot 10^{-3} \f$.  At equal time our errors are 0.36
-/// to 0.43 of the other code's in \f$ \rho \f$ and 0.48 to 0.55 in v, over the whole range from
+/// \f$ 5.4\cdot 10^{-4} \f$ and \f$ 1.1\cdot 10^{-3} \f$.  At equal time our errors are 0.41
+/// to 0.45 of the other code's in \f$ \rho \f$ and 0.54 to 0.60 in v, over the whole range from
 /// 0.1 to 2 s.  At \f$ h = 1.2\Delta x \f$ with the plain pressure term we lose: the floor of
 /// Step 2 holds \f$ L_1(v) \f$ near \f$ 6.4\cdot 10^{-3} \f$ however fine the tube (fitted
-/// order 0.19), 1.3 to 5.4 times the other code's at equal time, and \f$ L_1(\rho) \f$ falls
+/// order 0.19), 1.3 to 5.5 times the other code's at equal time, and \f$ L_1(\rho) \f$ falls
 /// behind from about 0.6 s.  The grad-h correction removes the floor: the orders become 0.99
 /// and 1.00, the 1800-particle run gives \f$ 5.9\cdot 10^{-4} \f$ and \f$ 1.19\cdot 10^{-3} \f$
 /// (the other code \f$ 1.59\cdot 10^{-3} \f$ and \f$ 1.2\cdot 10^{-3} \f$), and at equal time our
-/// errors are 0.26 to 0.56 of the other's in \f$ \rho \f$ and 0.65 to 0.74 in v.  So the goal --
+/// errors are 0.28 to 0.56 of the other's in \f$ \rho \f$ and 0.65 to 0.76 in v.  So the goal --
 /// lower errors at equal time at both \f$ h/\Delta x \f$ -- is reached with the three levers,
 /// at \f$ h = 1.2\Delta x \f$ only with the third.  At \f$ h = \Delta x \f$ the correction does
 /// not help: \f$ \Omega = 1 \f$ on the lattice, and where h varies, in the shock and at the
 /// contact, our approximation of grad-h raises \f$ L_1(\rho) \f$ by a fifth (1.51e-3 against
 /// 1.26e-3 at 450 particles) for a third pass over the neighbours.  Two cautions.  Our times
-/// are CPU times and theirs wall times of a whole process; the wall times of this run, printed
-/// beside them, are 1.5 to 2 times larger on the shared machine it ran on, and at the four
-/// points where both codes were measured the comparison at \f$ h = \Delta x \f$, and with
-/// grad-h at 1.2, holds with them too (at 1800 particles and 1.2, in v only just: 1.19e-3 in
-/// 1.73 s against 1.2e-3 in 1.93 s).  And the other code's curve is a power law through two
+/// are CPU times and theirs wall times of a whole process.  For our one-threaded runs on an idle
+/// machine the two are the same (the table prints both; on a busy one the wall times grow,
+/// the CPU times do not), and at the four points where both codes were measured the comparison
+/// at \f$ h = \Delta x \f$, and with grad-h at 1.2, holds in wall time too (at 1800 particles
+/// and 1.2, in v: 1.19e-3 in 1.01 s against 1.2e-3 in 1.93 s).  And the other code's curve is a power law through two
 /// points, so at 0.1 s and 2 s it is extrapolated.
 
 /// One quoted measurement of the other code.
