@@ -48,8 +48,9 @@
 /// times thinner).  But the reference shows what neither claim says: the standard viscosity's
 /// curves are too shallow -- it brakes the infalling gas before the shock -- and the modified
 /// viscosity's are too deep: its kinetic energy peaks 27 % above the exact answer, its shock
-/// lags a third behind the reference's, and its collective term neither conserves energy (6 %)
-/// nor momentum (a third of the momentum scale).  The modern switch is the most accurate per
+/// lags a third behind the reference's, and its collective term does not conserve momentum (a
+/// third of the momentum scale).  The energy it used to lose (6 %) was the integration's: the
+/// leapfrog now pays the work done on the velocities the collective term changes (chapter 5).  The modern switch is the most accurate per
 /// CPU second in density, the modified viscosity in velocity at low resolution only.  Softening
 /// gravity with the smoothing length costs 1 % of the energy by t = 3; a fixed softening length
 /// conserves it to \f$ 5\times10^{-5} \f$.  Details in \ref ch06_findings "the findings".
@@ -1055,7 +1056,7 @@ Collapse step4_energies(const app::Chapter& chapter, const Parameters& par,
     if (steps > 0) std::printf(" %6ld %6.1f %8.1e %8.1e", steps, seconds, de, drift);
     std::printf("\n");
   };
-  row("reference, 4000 shells", r, 0, 0, 0, 0);
+  row("4000-shell reference", r, 0, 0, 0, 0);
   row("ours, 1D, " + std::to_string(par.quick ? 500 : 2000) + " shells", own, 0, 0, 0, 0);
   for (const EvrardRun* run : {&c.runs[0], &c.runs[1], &c.runs[2], &c.fixed}) {
     row(run == &c.fixed ? "std., fixed softening" : run->name, extremes(*run), run->steps,
@@ -1454,7 +1455,7 @@ Extreme step7_extreme(const Parameters& par, const Collapse& c) {
 /// |:--|--:|--:|--:|--:|--:|--:|
 /// | reference | 0.451 | 1.761 | -2.547 | | | |
 /// | standard | 0.344 | 1.469 | -2.215 | 1369 | 8.8e-3 | 1.4e-4 |
-/// | modified | 0.575 | 2.375 | -3.512 | 3154 | 5.6e-2 | 0.32 |
+/// | modified | 0.574 | 2.361 | -3.473 | 3152 | 1.4e-2 | 0.35 |
 /// | switch | 0.375 | 1.517 | -2.289 | 921 | 9.3e-3 | 1.0e-4 |
 /// | standard, softening 0.01 | 0.347 | 1.487 | -2.233 | 1424 | 4.7e-5 | 2.8e-4 |
 ///
@@ -1462,27 +1463,29 @@ Extreme step7_extreme(const Parameters& par, const Collapse& c) {
 /// \f$ \sum m|\mathbf v| \f$.)
 ///
 /// Selhammar: "the curves are more shallow" with the standard viscosity.  **Reproduced**: its
-/// largest thermal energy is 1.469 against the modified viscosity's 2.375, its deepest W -2.215
-/// against -3.512.  What the paper does not say, and the reference shows: the exact curves lie
+/// largest thermal energy is 1.469 against the modified viscosity's 2.361, its deepest W -2.215
+/// against -3.473.  What the paper does not say, and the reference shows: the exact curves lie
 /// between the two.  The standard viscosity's are too shallow, by 24 % in
 /// \f$ E_\mathrm{kin} \f$ -- it heats and brakes the gas as it falls, long before the shock
 /// (Fig 6) -- and the modified viscosity's are too deep, by 27 % in \f$ E_\mathrm{kin} \f$
-/// and 38 % in W.  Its collapse goes further than the exact one can: the gas passes through
+/// and 36 % in W.  Its collapse goes further than the exact one can: the gas passes through
 /// the shock without enough dissipation (the restricted term acts only where the approach
 /// exceeds what the compression explains, which in a converging flow near the centre it
-/// rarely does), and its collective term does not conserve energy.  That last we traced on
-/// 2048-particle runs with a fixed softening length, which isolates the viscosity: the energy
-/// changes by \f$ 2\times10^{-5} \f$ with the standard viscosity, \f$ 1.2\times10^{-3} \f$
-/// with the restricted term alone, and 6.9 % with the collective term alone.  Its update
-/// conserves \f$ \Delta T + \Delta U = 0 \f$ in each kick (chapter 5), but the collective
-/// term relaxes a particle's velocity to its neighbourhood's within one step
-/// (\f$ k\,\delta t \approx 3 \f$-6 with eq 7's step), so the velocities with which the pressure
-/// forces' work is counted in du/dt are not the velocities the particles have: the splitting
-/// of the stiff term from the pair forces is where the energy goes (with steps three times
-/// shorter the error falls from 4.0 % to 1.8 %, about first order).  It is not why the collapse
-/// goes too deep: with the shorter steps the kinetic energy still peaks at 0.59 (2048
-/// particles).  And since the collective term is not a pair force, momentum drifts by a third
-/// of \f$ \sum m|\mathbf v| \f$.
+/// rarely does).  Its energy, which earlier versions of this course lost (5.6 % by t = 3), is
+/// now conserved as the others' are: it changes by 1.4 % by t = 3 with the softening equal to h
+/// (standard and switch 0.9 %), most of it the softening's error, which is largest in the
+/// modified viscosity's denser core.  The collective term conserves
+/// \f$ \Delta T + \Delta U = 0 \f$ in each kick (chapter 5), but it changes the velocities at
+/// the kicks, and the work that the pressure forces and gravity do on those changes was left
+/// unpaid -- of first order in the step, and large, because the term relaxes a particle's
+/// velocity to its neighbourhood's within one step (\f$ k\,\delta t \approx 3 \f$-6 with eq 7's
+/// step).  The leapfrog now pays it (chapter 5 says how).  On 2048-particle runs to t = 1.1 with
+/// a fixed softening length, which isolates the viscosity, the modified viscosity's energy
+/// changes by \f$ 7.7\times10^{-4} \f$ with the payment and by 4.0 % without it
+/// (`sph::Leapfrog::work_of_term_kicks = false`), against \f$ 2\times10^{-5} \f$ for the
+/// standard viscosity; and the kinetic energy peaks at 0.59 either way, so the payment is not
+/// why the collapse goes too deep.  Since the collective term is not a pair force, momentum
+/// drifts by a third of \f$ \sum m|\mathbf v| \f$.
 ///
 /// **Figs 6-7** (`fig6_standard.png`, `fig7_modified.png`).  Selhammar: "the main difference
 /// between these models are the sharper gradients with modified artificial viscosity".
@@ -1497,12 +1500,15 @@ Extreme step7_extreme(const Parameters& par, const Collapse& c) {
 /// is twice too dense -- gas that has gone through the shock rather than been stopped by it.
 ///
 /// **Error against run time** (`evrard_error_vs_time.png`, t = 0.8).  At 8192 particles
-/// \f$ L_1(\log_{10}\rho) \f$ is 0.100 (standard), 0.085 (modified), 0.081 (switch) and
-/// \f$ L_1(v_r) \f$ 0.164, 0.086, 0.116, in 3.7, 10.0 and 5.1 s.  From 1024 to 8192 particles
+/// \f$ L_1(\log_{10}\rho) \f$ is 0.100 (standard), 0.084 (modified), 0.081 (switch) and
+/// \f$ L_1(v_r) \f$ 0.164, 0.086, 0.116, in 3.7, 10 and 5.1 s on an idle machine (the run in
+/// `output.txt` shared the machine with other work: 16, 34 and 10 s).  From 1024 to 8192 particles
 /// the modified viscosity converges at order 0.43 in density, the standard one at 0.71 and the
 /// switch at 0.95.  With `--largest 65536` (16 minutes) the series goes on to 65536 particles,
 /// and the lines part: there \f$ L_1(\log_{10}\rho) \f$ is 0.045 (standard, 91 s), 0.070
-/// (modified, 204 s) and 0.035 (switch, 118 s), and \f$ L_1(v_r) \f$ 0.067, 0.071 and 0.046.
+/// (modified, 204 s) and 0.035 (switch, 118 s), and \f$ L_1(v_r) \f$ 0.067, 0.071 and 0.046
+/// (measured before the leapfrog paid the collective term's work, which moved the modified
+/// viscosity's errors at 8192 particles in the third digit).
 /// The modified viscosity's errors stall (order 0.36 from 1024 to 65536 particles, the others
 /// 0.95-1.2): what limits it is not resolution but the gas it lets through the shock.  Does the
 /// modified viscosity buy accuracy per CPU second in the collapse it was designed for?  In
@@ -1512,7 +1518,7 @@ Extreme step7_extreme(const Parameters& par, const Collapse& c) {
 /// the best buy of the three.
 ///
 /// **Extreme cases.**  The standard run's centre reaches \f$ \rho = 302 \f$ (1270 times the mean
-/// density), the modified one's 1845, with h down to 0.006 and a step of \f$ 3.8\times10^{-4}
+/// density), the modified one's 1804, with h down to 0.006 and a step of \f$ 3.8\times10^{-4}
 /// \f$; the colder collapse (u = 0.005, 4096 particles) bounces at t = 1.08 with a central
 /// density of 892 and runs on: at this resolution the smoothing length, not the physics, stops
 /// the collapse, far below the \f$ 10^6 \f$ contrast of the continuous problem.  Two particles
@@ -1523,8 +1529,9 @@ Extreme step7_extreme(const Parameters& par, const Collapse& c) {
 ///
 /// **What it costs.**  At 8192 particles the standard run to t = 3 takes about 50 s (1369
 /// steps, 4.1-4.5 microseconds per particle-step, of which the tree about one); the modified
-/// viscosity's takes about 190 s: its denser centre needs 3154 steps, each twice the standard's
-/// cost.  The whole chapter takes about 6 minutes on two cores, over the 3 we aim at.  Gravity
+/// viscosity's takes about 190 s: its denser centre needs 3152 steps, each twice the standard's
+/// cost.  The whole chapter takes about 6 minutes on two idle cores, over the 3 we aim at (the
+/// run in `output.txt` shared the machine with other work and took 15).  Gravity
 /// is not the reason: the bench (`build/bench/bench --only evrard`) times the whole step at
 /// 3.0-3.3 microseconds a particle at 22000 particles, of which the tree is 1.2-1.5.  The
 /// hydrodynamic part costs four times the shock tube's step, because in a collapse a fifth to
@@ -1533,9 +1540,9 @@ Extreme step7_extreme(const Parameters& par, const Collapse& c) {
 ///
 /// \section ch06_try What to try
 ///
-///  - `--softening 0.01`: every run with the fixed softening length; the total energy of every
-///    viscosity but the modified one is then conserved to \f$ 10^{-4} \f$, and the modified
-///    one's error is left for its collective term alone.
+///  - `--softening 0.01`: every run with the fixed softening length, so that gravity itself
+///    conserves energy: what the energy curves of panel (d) then show is the viscosities' and
+///    the integration's own error.
 ///  - `--monopole --theta 0.5`: the tree without quadrupoles; Step 2's table shows errors ten
 ///    times larger at almost the same cost.
 ///  - `--eta 0 --softening 0.01`: the modified viscosity without its collective term; its
@@ -1545,10 +1552,10 @@ Extreme step7_extreme(const Parameters& par, const Collapse& c) {
 ///  - `--particles 2048 --largest 65536`: Fig 5 at a quarter of the particles (faster, shallower
 ///    curves) and the error series up to 65536 particles (about ten minutes), where the
 ///    modified viscosity's errors stall and the switch's keep falling.
-///  - `--courant 0.1 --softening 0.01`: steps three times shorter.  The modified viscosity's
-///    energy error falls from 4.0 % to 1.8 % (2048 particles): about first order in the step,
-///    the signature of the splitting.  Its kinetic energy still peaks at 0.59: the overshoot is
-///    not the energy error.
+///  - `build/tests/test_sph "the collective term in a collapse*"`: a 512-particle collapse
+///    with the collective term, with and without the leapfrog's payment of its kicks' work, at
+///    two step sizes.  Halving the step divides the energy error by 12.6 with the payment
+///    (second order, still short of its asymptote) and by 2.5 without (first order).
 
 /// \section ch06_next What comes next
 ///
