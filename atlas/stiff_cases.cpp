@@ -111,6 +111,8 @@ struct RunLimits {
   long max_steps = 100000;      // the library stops a run that needs more, with a message
   double max_seconds = 120;     // the atlas's own budget, so that no case can hang the page
   std::vector<double> outputs;  // times at which at_output is called (before t_end)
+  // Selhammar's eq 7 (the chapters' default) or the signal velocity of Monaghan (1997)
+  sph::Settings::TimestepRule timestep = sph::Settings::TimestepRule::selhammar_eq7;
 };
 
 // Runs the scene from the particles to t_end, or until the library stops it, and fills the row.
@@ -128,6 +130,7 @@ Run<Scene::D> run_case(Row row, const sph::Particles<Scene::D>& particles,
   sph::Settings settings;
   settings.smoothing = rule;
   settings.max_steps = limits.max_steps;
+  settings.timestep_rule = limits.timestep;
   std::cerr << "  " << row.name << " (" << D << "D, " << row.scheme << ") ..." << std::flush;
   const app::Stopwatch clock;
   std::optional<Sim> sim;
@@ -452,19 +455,25 @@ void sod_with_gamma(std::vector<Row>& rows, double gamma, double spacing) {
 
 // The Sod tube at rest and moving at +boost: the same physics, and the same error once the
 // particles are carried back into the rest frame.
+// Under each time-step rule: Selhammar's eq 7 puts the particle's own speed into the Courant
+// limit, the signal velocity of Monaghan (1997) only the pairs' relative speeds.
 template <class Scene>
-void boosted_sod(std::vector<Row>& rows, double boost, double spacing) {
+void boosted_sod(std::vector<Row>& rows, double boost, double spacing,
+                 sph::Settings::TimestepRule timestep) {
   const double t_end = 0.2;
   const auto rule = sph::SmoothingLengthRule::from_density(4);
+  const bool signal = timestep == sph::Settings::TimestepRule::signal_velocity;
   for (double v : {0.0, boost}) {
     sph::ShockTubeSetup s;
     s.left_spacing = spacing;
     s.left.velocity = s.right.velocity = v;
     auto tube = sph::make_shock_tube<1>(s, rule);
     Row row;
-    row.name = v == 0 ? "Sod at rest" : "Sod moving at +" + number(v, "%g");
+    row.name = (v == 0 ? "Sod at rest" : "Sod moving at +" + number(v, "%g")) +
+               (signal ? ", signal-velocity step" : ", eq 7 step");
     RunLimits limits;
     limits.t_end = t_end;
+    limits.timestep = timestep;
     Run<1> run = run_case<Scene>(row, tube.particles, tube.box, s.gamma, rule, limits);
     if (run.row.ran) {
       // Back into the rest frame: x - v t (wrapped into the periodic tube), v_x - v.
@@ -627,18 +636,26 @@ std::string findings(const std::vector<Row>& rows) {
     md << "- Without viscosity, " << list(inviscid)
        << " stopped: the particles meet with nothing to stop them, and the Courant step "
           "collapses.\n";
-  // The boost.
-  const Row *rest = nullptr, *moving = nullptr;
-  for (const Row& r : rows) {
-    if (r.name == "Sod at rest") rest = &r;
-    if (r.name.rfind("Sod moving", 0) == 0) moving = &r;
-  }
-  if (rest && moving && rest->ran && moving->ran) {
-    md << "- Galilean invariance: carried back into the rest frame, the moving tube's errors "
-          "are those of the tube at rest (the notes give both), but it takes "
-       << moving->steps << " steps instead of " << rest->steps
-       << ": Selhammar's eq 7 puts the particle's own speed into the Courant limit, so the step "
-          "depends on the frame.\n";
+  // The boost, under each time-step rule.
+  for (const char* rule : {", eq 7 step", ", signal-velocity step"}) {
+    const Row *rest = nullptr, *moving = nullptr;
+    for (const Row& r : rows) {
+      const bool of_rule =
+          r.name.size() > std::string(rule).size() &&
+          r.name.compare(r.name.size() - std::string(rule).size(), std::string::npos, rule) == 0;
+      if (!of_rule) continue;
+      if (r.name.rfind("Sod at rest", 0) == 0) rest = &r;
+      if (r.name.rfind("Sod moving", 0) == 0) moving = &r;
+    }
+    if (!(rest && moving && rest->ran && moving->ran)) continue;
+    const bool eq7 = std::string(rule) == ", eq 7 step";
+    md << "- Galilean invariance" << rule << ": carried back into the rest frame, the moving "
+       << "tube's errors are those of the tube at rest (the notes give both), and it takes "
+       << moving->steps << " steps against " << rest->steps << " at rest"
+       << (eq7 ? ": Selhammar's eq 7 puts the particle's own speed into the Courant limit, so the "
+                 "step depends on the frame.\n"
+               : ": the signal velocity of Monaghan (1997) sees only the pairs' relative speeds, "
+                 "so the step does not depend on the frame.\n");
   }
   return md.str();
 }
@@ -674,13 +691,15 @@ void write_page(const std::string& path, const std::vector<Row>& rows, const Sed
         "sph::Simulation): the column gives the one that set the most steps, with its "
         "share.\n\n"
      << "The cases: Sod's tube (rho 1 and 0.125) with the right pressure lowered to 1e-5 "
-        "and 1e-10 of the left's, in 1D, 2D and 3D (2D and 3D from settled glasses); a "
+        "and 1e-10 of the left's, in 1D, 2D and 3D at chapter 4's full resolutions (2D and 3D "
+        "from settled glasses); a "
         "near vacuum (rho and P of 1e-6 on the right, on one lattice, so the masses differ a "
         "million times); two halves of a gas flying apart at -8 and +8, faster than "
         "2c/(gamma-1) each, so that a vacuum opens between them; Mach-100 colliding streams "
         "(sph::make_colliding_streams); Sod's tube with gamma = 1.01 and gamma = 10; the "
         "Sedov-Taylor blast below; Sod's tube moving at +10 against the same tube at rest "
-        "(the errors compared in the rest frame); and degenerate input.\n\n"
+        "(the errors compared in the rest frame), under each of the two time-step rules; and "
+        "degenerate input.\n\n"
      << table(rows) << "\n"
      << "What the table shows:\n\n"
      << findings(rows)
@@ -732,7 +751,8 @@ void write_page(const std::string& path, const std::vector<Row>& rows, const Sed
      << "- `--sedov-cells 48`: 3.4 times the particles; see whether the densest shell closes "
         "on R(t) and by how much the L1 difference falls.\n"
      << "- `--boost 100`: the tube moving at +100; compare its rest-frame errors and its "
-        "steps with the tube at rest (the own speed in the Courant limit).\n"
+        "steps with the tube at rest, under eq 7 (the own speed in the Courant limit) and "
+        "under the signal velocity.\n"
      << "- `--only sedov` (or strong, vacuum, streams, gamma, boost, degenerate): one group "
         "alone.\n";
 }
@@ -762,15 +782,17 @@ int main(int argc, char** argv) {
       par.sedov.neighbours = 40;
     }
     const double spacing_1d = par.quick ? 1.0 / 100 : 1.0 / 800;
-    const double spacing_2d = par.quick ? 1.0 / 32 : 1.0 / 160;
-    const double spacing_3d = par.quick ? 1.0 / 16 : 1.0 / 48;
     std::vector<Row> rows;
 
     if (wanted("strong")) {
+      // At chapter 4's full resolutions and neighbour numbers: 3600, 5621 and 9000 particles.
       std::cerr << "Strong shock tubes\n";
-      strong_tubes<1>(rows, spacing_1d, sph::SmoothingLengthRule::from_density(4));
-      strong_tubes<2>(rows, spacing_2d, sph::SmoothingLengthRule::neighbour_number(20, 1));
-      strong_tubes<3>(rows, spacing_3d, sph::SmoothingLengthRule::neighbour_number(50, 2));
+      strong_tubes<1>(rows, par.quick ? 1.0 / 100 : 1.0 / 3200,
+                      sph::SmoothingLengthRule::from_density(4));
+      strong_tubes<2>(rows, par.quick ? 1.0 / 32 : 1.0 / 200,
+                      sph::SmoothingLengthRule::neighbour_number(20, 1));
+      strong_tubes<3>(rows, par.quick ? 1.0 / 16 : 1.0 / 80,
+                      sph::SmoothingLengthRule::neighbour_number(par.quick ? 50 : 60, 2));
     }
 
     if (wanted("vacuum")) {
@@ -809,7 +831,10 @@ int main(int argc, char** argv) {
 
     if (wanted("boost")) {
       std::cerr << "Galilean boost\n";
-      boosted_sod<OwnWorkViscous<1>>(rows, par.boost, spacing_1d);
+      boosted_sod<OwnWorkViscous<1>>(rows, par.boost, spacing_1d,
+                                     sph::Settings::TimestepRule::selhammar_eq7);
+      boosted_sod<OwnWorkViscous<1>>(rows, par.boost, spacing_1d,
+                                     sph::Settings::TimestepRule::signal_velocity);
     }
 
     if (wanted("degenerate")) {

@@ -2,7 +2,8 @@
 # Runs every chapter at full resolution and prints a summary table.  Called by the `figures`
 # target (chapters/CMakeLists.txt), which passes the chapter executables and directories:
 #
-#   run-chapters.sh --figures DIR --log DIR [--plot-demo EXE] [--chapter EXE NN-name]...
+#   run-chapters.sh --figures DIR --log DIR [--tries EXE --source DIR] [--plot-demo EXE]
+#                   [--chapter EXE NN-name]...
 #
 # For each chapter it runs `EXE --output FIGURES/NN-name` with standard output captured in
 # FIGURES/NN-name/output.txt (the "real console output" that the documentation shows).
@@ -16,12 +17,21 @@
 # from the chapters' own summaries (the last full run of each).
 # The exit status is 1 if any chapter failed.
 #
+# "What to try" runs: with --tries (the tool docs/quoted_numbers.cpp builds) and --source (the
+# chapters' source directory), each chapter is followed by the runs its "What to try" section
+# quotes numbers from: `EXE --output LOG/try/NN-name/SLUG OPTIONS`, standard output kept in
+# FIGURES/NN-name/try/SLUG.txt, so that the test of quoted numbers can check the text against
+# them.  Their figures are not kept, and a run whose checks fail (as some are meant to) is not a
+# failure of the chapter.
+#
 # SPH_ONLY="01 04-monaghan" (environment) runs only the chapters whose names start so.
 set -uo pipefail
 
 figures=""
 log=""
 plot_demo=""
+tries=""
+source_dir=""
 exes=()
 dirs=()
 while (($#)); do
@@ -29,6 +39,8 @@ while (($#)); do
     --figures) figures="$2"; shift 2 ;;
     --log) log="$2"; shift 2 ;;
     --plot-demo) plot_demo="$2"; shift 2 ;;
+    --tries) tries="$2"; shift 2 ;;
+    --source) source_dir="$2"; shift 2 ;;
     --chapter) exes+=("$2"); dirs+=("$3"); shift 3 ;;
     *) echo "run-chapters.sh: unknown argument '$1'" >&2; exit 2 ;;
   esac
@@ -114,6 +126,25 @@ run() {
   rows+=("$name|$verdict|$count|$(duration "$seconds")|${error:-}")
 }
 
+# The "What to try" runs of one chapter: run_tries NAME EXE
+run_tries() {
+  local name="$1" exe="$2" slug options
+  rm -rf "${figures:?}/$name/try" "${log:?}/try/$name"
+  while IFS=$'\t' read -r slug options; do
+    [[ -n "$slug" ]] || continue
+    mkdir -p "$figures/$name/try" "$log/try/$name"
+    local start seconds status
+    start=$(now)
+    # (the options are split as the shell splits words: they are the text's own, e.g. --alpha 0)
+    # shellcheck disable=SC2086
+    "$exe" --output "$log/try/$name/$slug" $options > "$figures/$name/try/$slug.txt" \
+      2> "$log/try/$name/$slug.stderr.txt"
+    status=$?
+    seconds=$(awk -v a="$start" -v b="$(now)" 'BEGIN { print b - a }')
+    printf '    what to try: %-40s exit %d  %s\n' "$options" "$status" "$(duration "$seconds")"
+  done < <("$tries" tries "$source_dir/$name")
+}
+
 # ---- Run the chapters ----------------------------------------------------------------------------
 total=${#exes[@]}
 echo "Running ${total} chapter(s) at full resolution into $figures"
@@ -122,6 +153,7 @@ for ((i = 0; i < total; i++)); do
   selected "$dir" || continue
   echo "[$((i + 1))/$total] ${exes[$i]} --output $figures/$dir"
   run "$dir" "$figures/$dir" "${exes[$i]}" --output "$figures/$dir"
+  [[ -n "$tries" && -d "$source_dir/$dir" ]] && run_tries "$dir" "${exes[$i]}"
 done
 if [[ -n "$plot_demo" ]] && selected plot-demo; then
   echo "[plot demo] $plot_demo $figures/plot-demo.png"

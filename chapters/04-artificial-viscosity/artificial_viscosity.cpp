@@ -160,18 +160,69 @@ using app::format;
 /// which has no parameters, and the viscosity with its \f$ \alpha \f$, \f$ \beta \f$ and
 /// \f$ \nu^2 \f$.  Passing the viscosity as a value, not fixing it in the scene, is what lets
 /// Step 5 run three strengths of it with one compiled scheme.
+///
+/// Step 6 builds three levers that make a tube cheaper or more accurate: another time-step
+/// rule, walls instead of the period, and the grad-h correction of the pressure force.  They are
+/// off by default, because Steps 1-5 reproduce what the papers did, and a reader can switch each
+/// of them on for the Sod tubes of Steps 1, 2, 3 and 5 (`--signal-velocity`, `--courant`,
+/// `--walls`, `--grad-h`; Step 4's tube stays the papers').  Two of the levers change the scene
+/// itself -- a wall needs fixed boundary particles, the correction another pressure term -- so
+/// `run_tube` picks one of four compiled scenes; the time step is a setting of the run.  A scene
+/// without walls or grad-h contains neither.
 
 template <int D>
 struct ViscousGas : sph::Scene<D> {
   using Terms = sph::Terms<sph::PressureHernquistKatz, sph::MonaghanGingold1983>;
 };
+template <int D>
+struct GradHGas : ViscousGas<D> {
+  using Terms = sph::Terms<sph::PressureGradH, sph::MonaghanGingold1983>;
+};
+template <int D>
+struct WalledViscousGas : ViscousGas<D> {
+  using Boundaries = sph::FixedParticles;
+};
+template <int D>
+struct WalledGradH : WalledViscousGas<D> {
+  using Terms = sph::Terms<sph::PressureGradH, sph::MonaghanGingold1983>;
+};
+
+/// Step 6's levers for one run: the time-step rule and its factor, the tube's ends (walls only
+/// in 1D) and the pressure term.
+struct Levers {
+  sph::Settings::TimestepRule timestep = sph::Settings::TimestepRule::selhammar_eq7;
+  double courant = 0.3;
+  bool walls = false;   // a tube of half-length 0.5 closed by fixed particles (1D)
+  bool grad_h = false;  // the pressure term with the grad-h correction
+  std::string describe() const {
+    std::string text = timestep == sph::Settings::TimestepRule::signal_velocity
+                           ? "signal-velocity step"
+                           : "eq 7 step";
+    text += format(", C = %g", courant);
+    if (walls) text += ", walls";
+    if (grad_h) text += ", grad-h";
+    return text;
+  }
+};
 
 template <int D>
-app::TubeRun<D> run_tube(const sph::ShockTubeSetup& setup, const sph::SmoothingLengthRule& rule,
+app::TubeRun<D> run_tube(sph::ShockTubeSetup setup, const sph::SmoothingLengthRule& rule,
                          const sph::MonaghanGingold1983& viscosity, double t_end,
-                         const std::string& label) {
-  return app::run_shock_tube<ViscousGas<D>>(setup, rule, {{}, viscosity},
-                                            {.t_end = t_end, .label = label});
+                         const std::string& label, const Levers& levers = {}) {
+  const app::TubeRunOptions options{
+      .t_end = t_end, .courant = levers.courant, .timestep_rule = levers.timestep, .label = label};
+  if constexpr (D == 1) {
+    if (levers.walls) {
+      setup.ends = sph::ShockTubeSetup::Ends::walls;
+      setup.half_length = 0.5;
+      if (levers.grad_h) {
+        return app::run_shock_tube<WalledGradH<1>>(setup, rule, {{}, viscosity}, options);
+      }
+      return app::run_shock_tube<WalledViscousGas<1>>(setup, rule, {{}, viscosity}, options);
+    }
+  }
+  if (levers.grad_h) return app::run_shock_tube<GradHGas<D>>(setup, rule, {{}, viscosity}, options);
+  return app::run_shock_tube<ViscousGas<D>>(setup, rule, {{}, viscosity}, options);
 }
 
 /// \subsection ch04_params The parameters
@@ -196,6 +247,14 @@ app::TubeRun<D> run_tube(const sph::ShockTubeSetup& setup, const sph::SmoothingL
 /// refused with a message naming the option, and two states that fly apart fast enough to leave
 /// a vacuum between them are refused by the exact solver, which has no star state to offer for
 /// them.
+///
+/// The levers of Step 6 are options too, off by default: `--signal-velocity`, `--courant`,
+/// `--walls` and `--grad-h` (see the scene above; "What to try" at the end of the chapter gives
+/// what each does to Step 1).  The Courant factor may go from 0.05 to 0.6.  The upper end is
+/// Step 6's race, where the signal-velocity step at C = 0.6 is the other code's step; eq 7 at
+/// 0.6 still runs Sod's tube stably, because eq 7 counts the viscosity twice over (its
+/// \f$ 1.2\,\alpha c_i \f$ acts on gas at rest).  Walls hold the gas beside them at rest, so
+/// they are refused for a moving tube.
 
 struct Parameters {
   sph::ShockTubeSetup tube = sph::ShockTubeSetup::sod();  // Sod (1978), for every tube but one
@@ -205,6 +264,8 @@ struct Parameters {
   int sod_2d = 200;   // ... per unit length in 2D (tube width 0.125)
   int sod_3d = 80;    // ... per unit length in 3D (Watkins' tube: 10 x 10 per cross-section)
   double neighbours_1d = 4, neighbours_2d = 20, neighbours_3d = 60, neighbours_mg = 50;
+  Levers levers;  // Step 6's levers for the Sod tubes of Steps 1, 2, 3 and 5: off by default
+  bool signal_velocity = false;  // --signal-velocity, which sets levers.timestep
   bool quick = false;
 
   sph::MonaghanGingold1983 viscosity() const { return {alpha, beta, nu2}; }
@@ -223,6 +284,25 @@ void declare_parameters(app::Chapter& chapter, Parameters& par) {
       .check(app::between(0.0, 20.0));
   chapter.parameter("--nu2", par.nu2, "nu^2 / h^2 in mu_ij (Monaghan: 0.01; Selhammar: 1e-4)")
       .check(app::between(1e-8, 1.0));
+  chapter.flag("--signal-velocity", par.signal_velocity,
+               "Step 6's lever 1 in Steps 1, 2, 3 and 5: the time step of Monaghan (1997) from "
+               "the signal velocity, instead of eq 7");
+  chapter
+      .parameter("--courant", par.levers.courant,
+                 "Courant factor of the time step in Steps 1, 2, 3 and 5 (Step 6 sets its own)")
+      .check(app::between(0.05, 0.6));
+  chapter.flag("--walls", par.levers.walls,
+               "Step 6's lever 2 in the 1D tubes of Steps 1, 2 and 5: a tube of the window's "
+               "length closed by fixed particles, instead of a periodic tube twice as long");
+  chapter.flag("--grad-h", par.levers.grad_h,
+               "Step 6's lever 3 in Steps 1, 2, 3 and 5: the pressure force with the grad-h "
+               "correction");
+  chapter.require(
+      [&par] {
+        return !par.levers.walls || (par.tube.left.velocity == 0 && par.tube.right.velocity == 0);
+      },
+      "--walls needs both gases at rest (--v-left 0 --v-right 0): a wall of fixed "
+      "particles holds the gas beside it at rest");
   // Steps 1 and 3 measure Sod's pattern of waves, a rarefaction moving left and a shock moving
   // right (colliding gases, say, make two shocks and no plateau behind a rarefaction).
   chapter.require(
@@ -303,13 +383,16 @@ void declare_parameters(app::Chapter& chapter, Parameters& par) {
                   });
 }
 
-void set_resolution(Parameters& par, bool quick) { par.quick = quick; }
+void set_resolution(Parameters& par, bool quick) {
+  par.quick = quick;
+  if (par.signal_velocity) par.levers.timestep = sph::Settings::TimestepRule::signal_velocity;
+}
 
 /// The program's first lines name the scheme, so that an output found on its own says what
 /// made it.
 void print_headline(const Parameters& par) {
-  std::printf("Chapter 4: Monaghan's artificial viscosity\n  %s, nu^2 = %g h^2\n",
-              par.viscosity().describe().c_str(), par.nu2);
+  std::printf("Chapter 4: Monaghan's artificial viscosity\n  %s, nu^2 = %g h^2\n  Sod tubes: %s\n",
+              par.viscosity().describe().c_str(), par.nu2, par.levers.describe().c_str());
 }
 
 /// \section ch04_sod1d Step 1: Sod's tube in 1D
@@ -399,7 +482,7 @@ Sod1D step1_sod_1d(const app::Chapter& chapter, const Parameters& par) {
   const std::pair<int, double> resolutions[] = {{par.sod_1d / 4, 0.003}, {par.sod_1d, 0.001}};
   for (const auto& [resolution, target] : resolutions) {
     sod.left_spacing = 1.0 / resolution;
-    const app::TubeRun<1> run = run_tube<1>(sod, rule, viscosity, par.t_end, "Sod 1D");
+    const app::TubeRun<1> run = run_tube<1>(sod, rule, viscosity, par.t_end, "Sod 1D", par.levers);
     const auto errors = sph::shock_tube_errors(run.particles, run.exact, par.t_end);
     // The particles in the measured window |x| <= 0.5: the "N" we compare with codes that run
     // a tube of that length.
@@ -416,12 +499,17 @@ Sod1D step1_sod_1d(const app::Chapter& chapter, const Parameters& par) {
     if (resolution != par.sod_1d) continue;
     std::printf("  momentum drift |dP|/sum|mv| = %.1e; last step limited by: %s\n",
                 run.momentum_drift, run.limit.c_str());
+    if (par.levers.walls) {
+      std::printf(
+          "  the walls pushed %.6f of x momentum into the gas; (p_left - p_right) t = %.6f\n",
+          -run.wall_impulse, (sod.left.pressure - sod.right.pressure) * par.t_end);
+    }
     const plot::Stamp stamp{par.viscosity().describe(),
                             "M4",
                             par.neighbours_1d,
                             static_cast<long long>(run.particles.size()),
                             run.seconds,
-                            "h = \\Delta x"};
+                            "h = \\Delta x, " + par.levers.describe()};
     app::shock_tube_figure({app::make_profile(run.particles, "SPH")}, run.exact, par.t_end,
                            "Sod shock tube in 1D, t = " + format("%g", par.t_end), stamp)
         .save_png(chapter.figure_path("sod_1d.png").string());
@@ -482,7 +570,7 @@ LatticeSums lattice_sums_1d(double eta) {
 
 /// The step prints the two sums for \f$ \eta \f$ from 1 to 2 in steps of 0.1 (0.25 with
 /// `--quick`) and beside them the \f$ L_1 \f$ errors of Sod's tube run at that \f$ \eta \f$.
-/// The tube always has 400 particles per unit length here (450 in the window), whatever the
+/// The tube always has 400 particles per unit length here (225 in the window), whatever the
 /// resolution options: coarse enough to be quick, fine enough that \f$ h = 2\Delta x \f$ still
 /// leaves each side an interior.  `lattice_sums_1d.png` draws the departures of the two sums
 /// from one on a log scale (exact zeros are drawn at \f$ 10^{-7} \f$) and the Sod error beside
@@ -509,7 +597,8 @@ struct EtaScan {
 
 EtaScan step2_lattice_sums(const app::Chapter& chapter, const Parameters& par) {
   const int resolution = 400;
-  const int in_window = resolution + resolution / 8;
+  // (the window |x| <= 0.5 holds half a unit of each side, the thin side 8 times sparser)
+  const int in_window = resolution / 2 + resolution / 16;
   std::printf("\nStep 2: lattice sums of the M4 kernel in 1D and the Sod error (N(window) = %d)\n",
               in_window);
   std::printf("  h/dx   density sum  gradient sum   L1(rho)    L1(v)\n");
@@ -520,7 +609,7 @@ EtaScan step2_lattice_sums(const app::Chapter& chapter, const Parameters& par) {
   for (double eta = 1.0; eta <= 2.0001; eta += par.quick ? 0.25 : 0.1) {
     const LatticeSums sums = lattice_sums_1d(eta);
     const app::TubeRun<1> run = run_tube<1>(sod, sph::SmoothingLengthRule::from_density(4.0 * eta),
-                                            par.viscosity(), par.t_end, "eta scan");
+                                            par.viscosity(), par.t_end, "eta scan", par.levers);
     const auto errors = sph::shock_tube_errors(run.particles, run.exact, par.t_end);
     std::printf("  %4.2f   %10.5f   %10.5f    %.3e  %.3e\n", eta, sums.density, sums.gradient,
                 errors[0].L1, errors[1].L1);
@@ -696,12 +785,14 @@ MultiD step3_sod_2d_3d(const app::Chapter& chapter, const Parameters& par) {
   sph::ShockTubeSetup multi = par.tube;
   multi.left_spacing = 1.0 / 40;
   const app::TubeRun<3> lattice3 =
-      run_tube<3>(multi, rule_3d, viscosity, par.t_end, "Sod 3D from a lattice");
+      run_tube<3>(multi, rule_3d, viscosity, par.t_end, "Sod 3D from a lattice", par.levers);
   multi.start = sph::ShockTubeSetup::Start::settled;
   multi.left_spacing = 1.0 / par.sod_2d;
-  const app::TubeRun<2> sod2 = run_tube<2>(multi, rule_2d, viscosity, par.t_end, "Sod 2D");
+  const app::TubeRun<2> sod2 =
+      run_tube<2>(multi, rule_2d, viscosity, par.t_end, "Sod 2D", par.levers);
   multi.left_spacing = 1.0 / par.sod_3d;
-  const app::TubeRun<3> sod3 = run_tube<3>(multi, rule_3d, viscosity, par.t_end, "Sod 3D");
+  const app::TubeRun<3> sod3 =
+      run_tube<3>(multi, rule_3d, viscosity, par.t_end, "Sod 3D", par.levers);
 
   std::printf("\n  Sod 2D and 3D, t = %g\n", par.t_end);
   std::printf(
@@ -882,7 +973,7 @@ sph::ErrorVsTime error_study(const app::Chapter& chapter, const Parameters& par,
       sph::ShockTubeSetup setup = par.tube;
       setup.left_spacing = 1.0 / resolution;
       if (D > 1) setup.start = sph::ShockTubeSetup::Start::settled;
-      const app::TubeRun<D> run = run_tube<D>(setup, rule, viscosity, par.t_end, name);
+      const app::TubeRun<D> run = run_tube<D>(setup, rule, viscosity, par.t_end, name, par.levers);
       const sph::Measurement m =
           sph::shock_tube_measurement(run.particles, run.exact, par.t_end, setup.left_spacing);
       study.add({name, static_cast<int>(run.particles.size()), setup.left_spacing, run.seconds,
@@ -953,7 +1044,10 @@ double step5_error_against_run_time(const app::Chapter& chapter, const Parameter
 /// other code does not: our periodic tube holds twice the window's particles, and Selhammar's eq 7
 /// takes 2.1 to 2.5 times the other code's steps.  Two levers remove that; a third removes the
 /// error floor that \f$ h = 1.2\Delta x \f$ puts under our runs and not under the other code's.
-/// This step builds all three and races the result against the quoted numbers.
+/// This step builds all three and races the result against the quoted numbers.  Each lever is
+/// also an option of the program that a reader can switch on for the other steps' Sod tubes
+/// (`--signal-velocity` with `--courant`, `--walls`, `--grad-h`); "What to try" gives what each
+/// does to Step 1.
 ///
 /// **Lever 1: the time step.**  Eq 7 puts \f$ |\mathbf v_i| \f$ and the viscosity's
 /// \f$ 1.2(\alpha c_i + \beta\mu_{i,\max}) \f$ into every particle's signal speed, moving or not.
@@ -969,10 +1063,10 @@ double step5_error_against_run_time(const app::Chapter& chapter, const Parameter
 /// (`sph::Settings::timestep_rule`).  At rest the rule gives \f$ C h/(2c) \f$, only 10 % longer
 /// than eq 7's \f$ C h/(2.2c) \f$ at the same C.  The rest of the difference is a convention:
 /// the other code's 693 steps at 450 particles are fewer than the 1262 that any step of
-/// \f$ 0.3\,h/(c_i + c_j) \f$ needs to cross the dense gas at rest, and they are consistent
-/// with \f$ 0.3\,h/\tfrac12(c_i + c_j) \f$ (at least 631 steps) -- the form in which several codes write the signal
-/// velocity, with the pair's mean sound speed.  Its step at C = 0.3 is therefore ours at
-/// C = 0.6, and that is the factor we race with.  (It is still a stable explicit step: the
+/// \f$ 0.3\,h/(c_i + c_j) \f$ needs to cross the dense gas at rest (a lower bound, not a run),
+/// and they are consistent with \f$ 0.3\,h/\tfrac12(c_i + c_j) \f$, which needs at least 631 --
+/// the form in which several codes write the signal velocity, with the pair's mean sound speed.
+/// Its step at C = 0.3 is therefore ours at C = 0.6, and that is the factor we race with.  (It is still a stable explicit step: the
 /// sound crosses 0.3 of a smoothing length per step, and the test suite checks that the errors
 /// do not grow.)
 ///
@@ -1077,39 +1171,6 @@ constexpr Quoted other_code[] = {{1.0, 450, 693, 0.18, 2.17e-3, 4.2e-3},
                                  {1.2, 450, 571, 0.17, 3.10e-3, 4.8e-3},
                                  {1.2, 1800, 2185, 1.93, 1.59e-3, 1.2e-3}};
 
-/// The walled tube needs a scene whose boundaries hold fixed particles; otherwise it is the
-/// viscous gas of every other step.
-template <int D>
-struct WalledViscousGas : ViscousGas<D> {
-  using Boundaries = sph::FixedParticles;
-};
-template <int D>
-struct WalledGradH : WalledViscousGas<D> {
-  using Terms = sph::Terms<sph::PressureGradH, sph::MonaghanGingold1983>;
-};
-
-/// How one run of this step is made: the tube's ends, the time-step rule and its factor.
-struct RaceSettings {
-  bool walls = false;
-  sph::Settings::TimestepRule timestep = sph::Settings::TimestepRule::selhammar_eq7;
-  double courant = 0.3;
-  bool grad_h = false;  // the pressure term with the grad-h correction (walls only)
-};
-
-app::TubeRun<1> run_race_tube(sph::ShockTubeSetup setup, double eta, const Parameters& par,
-                              const RaceSettings& how, double t_end, const std::string& label) {
-  const auto rule = sph::SmoothingLengthRule::from_density(4.0 * eta);
-  const app::TubeRunOptions options{
-      .t_end = t_end, .courant = how.courant, .timestep_rule = how.timestep, .label = label};
-  if (!how.walls)
-    return app::run_shock_tube<ViscousGas<1>>(setup, rule, {{}, par.viscosity()}, options);
-  setup.ends = sph::ShockTubeSetup::Ends::walls;
-  setup.half_length = 0.5;
-  if (how.grad_h)
-    return app::run_shock_tube<WalledGradH<1>>(setup, rule, {{}, par.viscosity()}, options);
-  return app::run_shock_tube<WalledViscousGas<1>>(setup, rule, {{}, par.viscosity()}, options);
-}
-
 /// The error of a curve of (seconds, error) points at the time t, interpolated log-log between
 /// the neighbouring points in time (or extrapolated along the end segment, which `outside`
 /// reports).
@@ -1148,8 +1209,14 @@ Race step6_fair_race(const app::Chapter& chapter, const Parameters& par) {
   sod.left_spacing = 4.0 / par.sod_1d;
   std::printf("  (a) the time step: periodic tube, N(window) = %d\n", par.sod_1d * 9 / 64);
   std::printf("      rule                      boost  steps  wall [s]  L1(rho)    L1(v)\n");
-  const auto rule_row = [&](const char* name, const sph::ShockTubeSetup& setup, RaceSettings how) {
-    const app::TubeRun<1> run = run_race_tube(setup, 1.0, par, how, t, name);
+  // One 1D run at h = eta dx with the given levers (the user's own levers play no part here).
+  const auto race_tube = [&](const sph::ShockTubeSetup& setup, double eta, const Levers& how,
+                             const std::string& label) {
+    return run_tube<1>(setup, sph::SmoothingLengthRule::from_density(4.0 * eta), par.viscosity(), t,
+                       label, how);
+  };
+  const auto rule_row = [&](const char* name, const sph::ShockTubeSetup& setup, Levers how) {
+    const app::TubeRun<1> run = race_tube(setup, 1.0, how, name);
     const auto e = sph::shock_tube_errors(run.particles, run.exact, t);
     std::printf("      %-25s  %4g  %5ld  %8.3f  %.3e  %.3e\n", name, setup.left.velocity, run.steps,
                 run.seconds, e[0].L1, e[1].L1);
@@ -1170,14 +1237,14 @@ Race step6_fair_race(const app::Chapter& chapter, const Parameters& par) {
   // (b) Walls instead of the period: the same answer in the window with half the particles.
   std::printf("  (b) the tube: signal velocity, C = 0.6\n");
   std::printf("      ends      N(window) N(tube)  steps  wall [s]  L1(rho)    L1(v)\n");
-  const RaceSettings signal{.timestep = TimestepRule::signal_velocity, .courant = 0.6};
+  const Levers signal{.timestep = TimestepRule::signal_velocity, .courant = 0.6};
   for (int resolution : {par.sod_1d / 4, par.sod_1d}) {
     sod.left_spacing = 1.0 / resolution;
     double l1[2][2];
     for (int walled = 0; walled < 2; ++walled) {
-      RaceSettings how = signal;
+      Levers how = signal;
       how.walls = walled;
-      const app::TubeRun<1> run = run_race_tube(sod, 1.0, par, how, t, "walls or period");
+      const app::TubeRun<1> run = race_tube(sod, 1.0, how, "walls or period");
       const auto e = sph::shock_tube_errors(run.particles, run.exact, t);
       l1[walled][0] = e[0].L1;
       l1[walled][1] = e[1].L1;
@@ -1210,10 +1277,10 @@ Race step6_fair_race(const app::Chapter& chapter, const Parameters& par) {
           (variant ? ", grad-h" : "");
       for (int resolution : resolutions) {
         sod.left_spacing = 1.0 / resolution;
-        RaceSettings how = signal;
+        Levers how = signal;
         how.walls = true;
         how.grad_h = variant == 1;
-        const app::TubeRun<1> run = run_race_tube(sod, etas[k], par, how, t, "race");
+        const app::TubeRun<1> run = race_tube(sod, etas[k], how, "race");
         const auto e = sph::shock_tube_errors(run.particles, run.exact, t);
         const int n = static_cast<int>(e[0].count);
         std::string quoted = "";

@@ -1457,7 +1457,7 @@ Extreme step7_extreme(const Parameters& par, const Collapse& c) {
 /// | standard | 0.344 | 1.469 | -2.215 | 1369 | 8.8e-3 | 1.4e-4 |
 /// | modified | 0.574 | 2.361 | -3.473 | 3152 | 1.4e-2 | 0.35 |
 /// | switch | 0.375 | 1.517 | -2.289 | 921 | 9.3e-3 | 1.0e-4 |
-/// | standard, softening 0.01 | 0.347 | 1.487 | -2.233 | 1424 | 4.7e-5 | 2.8e-4 |
+/// | standard, softening 0.01 | 0.347 | 1.487 | -2.233 | 1424 | 4.7e-5 | 2.7e-4 |
 ///
 /// (energy change: \f$ |E(3) - E(0)|/|E(0)| \f$; momentum drift: \f$ |\mathbf P(3)| \f$ over
 /// \f$ \sum m|\mathbf v| \f$.)

@@ -50,6 +50,7 @@
 #include <cmath>
 #include <ctime>
 #include <string>
+#include <type_traits>
 
 namespace app {
 
@@ -85,8 +86,13 @@ struct TubeRun {
   double cpu_seconds = 0;
   double frame_velocity = 0;  ///< the frame the run is compared in (see the file comment)
   double energy_change = 0;   ///< \f$ |E(t) - E(0)|/E(0) \f$, E kinetic plus thermal
-  /// \f$ |\mathbf P(t) - \mathbf P(0)| / \sum_i m_i|\mathbf v_i(t)| \f$, see sph::momentum_scale
+  /// \f$ |\mathbf P(t) - \mathbf P(0) + \mathbf J_{\rm walls}| / \sum_i m_i|\mathbf v_i(t)| \f$,
+  /// with \f$ \mathbf J_{\rm walls} \f$ the impulse the walls took up (wall_impulse), see
+  /// sph::momentum_scale
   double momentum_drift = 0;
+  /// The x momentum the walls of a walled tube took up from the gas (0 for a periodic tube):
+  /// the gas's momentum changes by minus this, and momentum_drift counts the two together
+  double wall_impulse = 0;
   std::string limit;  ///< what limited the last full time step, e.g. "Courant (eq 7)"
 };
 
@@ -129,6 +135,23 @@ TubeRun<Scene::D> run_shock_tube(const sph::ShockTubeSetup& setup,
   };
   const double energy_before = energy(sim.particles());
   const sph::Vec<D> momentum_before = sph::total_momentum(sim.particles());
+  // A tube closed by walls: the walls' fixed particles push on the gas through the same pair
+  // terms as the gas pushes on them, so the gas's momentum changes by what the walls take up.
+  // They are never kicked, but the force on them is computed; the leapfrog's impulse on them
+  // over a step is the mean of the forces at its two ends times the step.
+  // (A scene without fixed particles skips the sum.)
+  const auto force_on_walls = [](const sph::Particles<D>& p) {
+    sph::Vec<D> force = sph::Vec<D>::Zero();
+    if constexpr (std::is_same_v<typename Scene::Boundaries, sph::FixedParticles>) {
+      for (std::size_t i = 0; i < p.size(); ++i) {
+        if (p.kind[i] == sph::ParticleKind::fixed) force += p.mass[i] * p.acceleration[i];
+      }
+    }
+    return force;
+  };
+  sph::Vec<D> wall_force = force_on_walls(sim.particles());
+  sph::Vec<D> wall_impulse = sph::Vec<D>::Zero();
+  double t_last = sim.time();
 
   ProgressDisplay display = ProgressDisplay::automatic();
   if (options.report != RunReport::live_and_final) display.report = nullptr;
@@ -138,6 +161,10 @@ TubeRun<Scene::D> run_shock_tube(const sph::ShockTubeSetup& setup,
     progress.update(s.steps() - 1, s.time(),
                     s.last_limit().dt);  // (update takes the index of the step)
     if (s.last_limit().criterion != "output time") run.limit = s.last_limit().criterion;
+    const sph::Vec<D> force = force_on_walls(s.particles());
+    wall_impulse += 0.5 * (wall_force + force) * (s.time() - t_last);
+    wall_force = force;
+    t_last = s.time();
   });
   progress.finish();
 
@@ -145,8 +172,10 @@ TubeRun<Scene::D> run_shock_tube(const sph::ShockTubeSetup& setup,
   run.steps = sim.steps();
   run.seconds = clock.seconds();
   run.energy_change = std::abs(energy(run.particles) - energy_before) / energy_before;
+  // (the walls' particles are at rest: the total momentum is the gas's)
   const sph::Vec<D> momentum_change = sph::total_momentum(run.particles) - momentum_before;
-  run.momentum_drift = momentum_change.norm() / sph::momentum_scale(run.particles);
+  run.wall_impulse = wall_impulse[0];
+  run.momentum_drift = (momentum_change + wall_impulse).norm() / sph::momentum_scale(run.particles);
   if (run.frame_velocity != 0) {
     // Into the frame moving with v_f: positions back by v_f t, velocities less v_f.
     const double shift = run.frame_velocity * options.t_end;
