@@ -24,14 +24,18 @@ int main(int argc, char** argv) {
   bool quick = false;
   std::string only;
   app.add_flag("--quick", quick, "small sizes, a few seconds (for smoke tests)");
-  app.add_option("--only", only, "run one part: neighbours, hydro, gravity, evrard or derivatives")
-      ->check(CLI::IsMember({"neighbours", "hydro", "gravity", "evrard", "derivatives"}));
+  app.add_option("--only", only,
+                 "run one part: neighbours, hydro, viscosities (the end of hydro alone), gravity, "
+                 "evrard or derivatives")
+      ->check(CLI::IsMember(
+          {"neighbours", "hydro", "viscosities", "gravity", "evrard", "derivatives"}));
   CLI11_PARSE(app, argc, argv);
   std::printf("SPH course benchmark: %d hardware threads\n", omp_get_num_procs());
 #ifdef SPH_BENCH_NEIGHBOURS
   if (only.empty() || only == "neighbours") bench::bench_neighbours(quick);
 #endif
   if (only.empty() || only == "hydro") bench::bench_hydro(quick);
+  if (only == "viscosities") bench::bench_viscosities(quick);
   if (only.empty() || only == "gravity") bench::bench_gravity(quick);
   if (only.empty() || only == "evrard") bench::bench_evrard(quick);
   if (only.empty() || only == "derivatives") bench::bench_derivatives(quick);

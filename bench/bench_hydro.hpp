@@ -158,6 +158,8 @@ void report_whole_run(const char* label, double left_spacing,
           static_cast<double>(sim.particles().size()));
 }
 
+inline void bench_viscosities(bool quick);
+
 inline void bench_hydro(bool quick) {
   const int steps = quick ? 5 : 40;
   const int threads = omp_get_num_procs();
@@ -189,10 +191,19 @@ inline void bench_hydro(bool quick) {
       "%+.0f %%)\n",
       fields.particles, fields.us_per_particle_step, plain.us_per_particle_step, threads,
       100.0 * (fields.us_per_particle_step / plain.us_per_particle_step - 1.0));
-  // Chapter 5's viscosities against the standard one (target: the modified step <= 1.3 times),
-  // all with the same fixed step, so that each step moves the particles as far and the
-  // neighbour search reuses its candidates as often (with its own step, a viscosity with a
-  // longer step would pay more searching per step, and less per unit of time).
+  bench_viscosities(quick);
+}
+
+// Chapter 5's viscosities against the standard one (target: the modified step <= 1.3 times),
+// all with the same fixed step, so that each step moves the particles as far and the
+// neighbour search reuses its candidates as often (with its own step, a viscosity with a
+// longer step would pay more searching per step, and less per unit of time).  `--only
+// viscosities` runs this part alone (for a profile, or an A/B of two builds).
+inline void bench_viscosities(bool quick) {
+  const int steps = quick ? 5 : 40;
+  const int threads = omp_get_num_procs();
+  const double spacing = quick ? 1.0 / 40 : 1.0 / 160;
+  const auto rule = sph::SmoothingLengthRule::neighbour_number(60, 3);
   const double dt = 2e-4;
   const StepCost standard = time_sod_steps<3>(spacing, rule, threads, steps, nullptr, dt);
   const StepCost modified =

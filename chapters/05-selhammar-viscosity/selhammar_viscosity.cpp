@@ -108,10 +108,11 @@
 ///
 /// In code, the restricted term is a bracket term like chapter 4's viscosity -- one pure pair
 /// function, so the force loop stays a SIMD loop -- that asks for \f$ \dot\rho \f$.  The
-/// collective term uses three slots of the step: the gradient pass (a second loop over the
-/// neighbour list, after the density, for \f$ \tilde{\mathbf v}_i \f$), `after_force` (the
-/// printed explicit acceleration) and `with_kick` (the exact update and the energy).  A scene
-/// that does not name them contains none of this code.
+/// collective term uses three slots of the step: sums in the force pass (the weights and
+/// weighted velocities of \f$ \tilde{\mathbf v}_i \f$, taken beside the forces: only the kicks
+/// use them, so they need no loop over the neighbours of their own), `after_force` (the printed
+/// explicit acceleration) and `with_kick` (the exact update and the energy).  A scene that does
+/// not name them contains none of this code.
 
 #include "app/chapter.hpp"
 #include "app/colliding_streams_run.hpp"
@@ -1425,9 +1426,10 @@ Strong step5_strong_shocks(const app::Chapter& chapter, const Parameters& par) {
 /// window of Step 3, \f$ -4.5 < z < 1.5 \f$, Sod against the exact solution in the window
 /// \f$ |x| \le 0.5 \f$.
 ///
-/// What to look for.  The modified viscosity costs more per step than the standard one (in 3D, a
-/// second loop over the neighbours for \f$ \tilde{\mathbf v} \f$, and \f$ \dot\rho \f$ beside the
-/// density) and is less accurate on both tubes, where it hardly acts.  On the weak tube none of
+/// What to look for.  The modified viscosity costs more per step than the standard one (in 3D,
+/// \f$ \dot\rho \f$ in a second loop beside the density, and the weights of
+/// \f$ \tilde{\mathbf v} \f$ in the force loop) and is less accurate on both tubes, where it
+/// hardly acts.  On the weak tube none of
 /// the three converges fast between 2048 and 16384 particles (orders 0.1 to 0.6): we have not
 /// settled why.  A likely part is the particle noise behind the shock and in the rarefaction,
 /// which at a fixed neighbour number falls slowly with the spacing in 3D (chapter 4's 3D Sod

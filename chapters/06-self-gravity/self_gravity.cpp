@@ -1455,7 +1455,7 @@ Extreme step7_extreme(const Parameters& par, const Collapse& c) {
 /// |:--|--:|--:|--:|--:|--:|--:|
 /// | reference | 0.451 | 1.761 | -2.547 | | | |
 /// | standard | 0.344 | 1.469 | -2.215 | 1369 | 8.8e-3 | 1.4e-4 |
-/// | modified | 0.574 | 2.361 | -3.473 | 3152 | 1.4e-2 | 0.35 |
+/// | modified | 0.574 | 2.362 | -3.473 | 3163 | 1.4e-2 | 0.37 |
 /// | switch | 0.375 | 1.517 | -2.289 | 921 | 9.3e-3 | 1.0e-4 |
 /// | standard, softening 0.01 | 0.347 | 1.487 | -2.233 | 1424 | 4.7e-5 | 2.7e-4 |
 ///
@@ -1463,7 +1463,7 @@ Extreme step7_extreme(const Parameters& par, const Collapse& c) {
 /// \f$ \sum m|\mathbf v| \f$.)
 ///
 /// Selhammar: "the curves are more shallow" with the standard viscosity.  **Reproduced**: its
-/// largest thermal energy is 1.469 against the modified viscosity's 2.361, its deepest W -2.215
+/// largest thermal energy is 1.469 against the modified viscosity's 2.362, its deepest W -2.215
 /// against -3.473.  What the paper does not say, and the reference shows: the exact curves lie
 /// between the two.  The standard viscosity's are too shallow, by 24 % in
 /// \f$ E_\mathrm{kin} \f$ -- it heats and brakes the gas as it falls, long before the shock
@@ -1501,8 +1501,8 @@ Extreme step7_extreme(const Parameters& par, const Collapse& c) {
 ///
 /// **Error against run time** (`evrard_error_vs_time.png`, t = 0.8).  At 8192 particles
 /// \f$ L_1(\log_{10}\rho) \f$ is 0.100 (standard), 0.084 (modified), 0.081 (switch) and
-/// \f$ L_1(v_r) \f$ 0.164, 0.086, 0.116, in 3.7, 10 and 5.1 s on an idle machine (the run in
-/// `output.txt` shared the machine with other work: 16, 34 and 10 s).  From 1024 to 8192 particles
+/// \f$ L_1(v_r) \f$ 0.164, 0.086, 0.116, in 3.7, 10 and 5.1 s on an idle machine with AVX-512
+/// (the run in `output.txt`, on an AVX2 machine: 9.4, 16 and 8.8 s).  From 1024 to 8192 particles
 /// the modified viscosity converges at order 0.43 in density, the standard one at 0.71 and the
 /// switch at 0.95.  With `--largest 65536` (16 minutes) the series goes on to 65536 particles,
 /// and the lines part: there \f$ L_1(\log_{10}\rho) \f$ is 0.045 (standard, 91 s), 0.070
@@ -1527,11 +1527,12 @@ Extreme step7_extreme(const Parameters& par, const Collapse& c) {
 /// usual size (maximum \f$ 7\times10^{-4} \f$) and feels \f$ GM/r^2 \f$ to
 /// \f$ 3\times10^{-7} \f$.
 ///
-/// **What it costs.**  At 8192 particles the standard run to t = 3 takes about 50 s (1369
-/// steps, 4.1-4.5 microseconds per particle-step, of which the tree about one); the modified
-/// viscosity's takes about 190 s: its denser centre needs 3152 steps, each twice the standard's
-/// cost.  The whole chapter takes about 6 minutes on two idle cores, over the 3 we aim at (the
-/// run in `output.txt` shared the machine with other work and took 15).  Gravity
+/// **What it costs.**  At 8192 particles the standard run to t = 3 takes about 50 s on two idle
+/// cores with AVX-512 (1369 steps, 4.1-4.5 microseconds per particle-step, of which the tree
+/// about one); the modified viscosity's takes about 190 s: its denser centre needs 3163 steps,
+/// each about twice the standard's cost.  The whole chapter takes about 6 minutes there, over
+/// the 3 we aim at.  The run in `output.txt` was made on two cores with AVX2 only, whose vector
+/// units are half as wide: 101 s, 296 s and 10.6 minutes.  Gravity
 /// is not the reason: the bench (`build/bench/bench --only evrard`) times the whole step at
 /// 3.0-3.3 microseconds a particle at 22000 particles, of which the tree is 1.2-1.5.  The
 /// hydrodynamic part costs four times the shock tube's step, because in a collapse a fifth to

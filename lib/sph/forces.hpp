@@ -23,6 +23,7 @@
 /// name -- a viscosity, a non-central term, the energy equation of a polytropic gas -- is not
 /// in its loop at all.
 
+#include "sph/error.hpp"
 #include "sph/fields.hpp"
 #include "sph/kernel.hpp"
 #include "sph/neighbours.hpp"
@@ -72,10 +73,11 @@ inline Pair<D> pair_geometry(const ParticleView<D>& in, std::size_t i, const Nei
 struct NoPairAcceleration {};
 struct NoHeatingFactor {};
 struct NoSignalVelocity {};
+struct NoPairSum {};
 /// What one pair contributes in the force pass: the central factor, the non-central
 /// acceleration and heating (present only if a term has them), \f$ |\mu_{ij}| \f$ and, with the
 /// signal-velocity time step, the pair's signal speed.
-template <bool with_extra, bool with_heating, bool with_signal = false>
+template <bool with_extra, bool with_heating, bool with_signal = false, bool with_sum = false>
 struct PairForce {
   double f, rv, mu;
   double r_ij[3];  // the first D are used
@@ -85,6 +87,8 @@ struct PairForce {
   [[no_unique_address]] std::conditional_t<with_heating, double, NoHeatingFactor> f_heat;
   /// \f$ v_{\rm sig,ij} \f$ of Monaghan (1997) when the time step asks for it (else no storage).
   [[no_unique_address]] std::conditional_t<with_signal, double, NoSignalVelocity> signal;
+  /// A term's force-pass sums (PairSum) when a term of the scene takes them (else no storage).
+  [[no_unique_address]] std::conditional_t<with_sum, PairSum, NoPairSum> sum;
 };
 
 /// The force between particle i and one neighbour: the geometry, then every term of the scene.
@@ -97,7 +101,8 @@ inline auto pair_force(const ParticleView<D>& in, const TermList& terms, std::si
                        const Neighbour& nb, double signal_beta = 0.0) {
   const Pair<D> pr = pair_geometry<D, K>(in, i, nb);
   constexpr bool heating = TermList::template any_heating<D>;
-  PairForce<TermList::template any_pair_acceleration<D>, heating, with_signal> out;
+  constexpr bool with_sum = TermList::template any_force_sum<D>;
+  PairForce<TermList::template any_pair_acceleration<D>, heating, with_signal, with_sum> out;
   const Bracket bracket = bracket_of<D>(terms, pr, in);
   // Equal and opposite: the factor m_j * bracket * g multiplies the antisymmetric r_ij.
   out.f = in.m[pr.j] * bracket.value * pr.gradient_factor;
@@ -108,6 +113,7 @@ inline auto pair_force(const ParticleView<D>& in, const TermList& terms, std::si
   for (int a = 0; a < D; ++a) out.r_ij[a] = pr.r_ij[a];
   if constexpr (TermList::template any_pair_acceleration<D>)
     out.extra = pair_acceleration_of<D>(terms, pr, in);
+  if constexpr (with_sum) out.sum = force_sum_of<D>(terms, pr, in);
   if constexpr (with_signal) {
     // (rv < 0 implies r > 0; the branches are selects, the loop stays vectorised)
     const double w = pr.rv < 0 ? pr.rv / pr.r : 0.0;
@@ -121,23 +127,34 @@ inline auto pair_force(const ParticleView<D>& in, const TermList& terms, std::si
 /// signal velocity of Monaghan (1997) over each particle's pairs (with \p signal_beta as its
 /// \f$ \beta \f$).  Reads what `in` points at: density, pressure, sound speed, P/rho^2,
 /// positions and velocities one array per axis.  Without \p track_signal the loop has no trace
-/// of the signal velocity (the time step of eq 7 does not need it).
+/// of the signal velocity (the time step of eq 7 does not need it).  When a term takes sums in
+/// the force pass (terms.hpp, PairSum), each particle's sums go to \p sums, for the term to
+/// finish after the pass; a scene without such a term has no trace of them in its loop.
 template <int D, class K, class TermList, bool evolve_energy, bool track_signal = false>
 void compute_forces(Particles<D>& p, const NeighbourList<D>& list, const ParticleView<D>& in,
-                    const TermList& terms, DerivedFields<D>& fields, double signal_beta = 0.0) {
+                    const TermList& terms, DerivedFields<D>& fields, double signal_beta = 0.0,
+                    std::vector<PairSum>* sums = nullptr) {
   const std::size_t n = p.size();
   constexpr bool tracks_mu = TermList::tracks_mu;
   constexpr bool extra = TermList::template any_pair_acceleration<D>;
+  constexpr bool with_sum = TermList::template any_force_sum<D>;
   if constexpr (tracks_mu) fields.max_mu.resize(n);
   if constexpr (track_signal) fields.max_signal.resize(n);
+  if constexpr (with_sum) {
+    require(sums != nullptr,
+            "force pass: a term takes sums in the force pass, but no place for "
+            "them was given (the sums argument of compute_forces)");
+    sums->resize(n);
+  }
 #pragma omp parallel for schedule(dynamic, 512) if (n >= parallel_threshold)
   for (std::size_t i = 0; i < n; ++i) {
     const ParticleView<D> local = in;  // a private copy: its pointers stay in registers
     const std::span<const Neighbour> nb = list.of(i);
     const auto count = static_cast<std::ptrdiff_t>(nb.size());
     double a0 = 0, a1 = 0, a2 = 0, energy_rate = 0, max_mu = 0, max_signal = 0;
+    double s0 = 0, s1 = 0, s2 = 0, s3 = 0;  // a term's force-pass sums (if any)
 #pragma omp simd simdlen(8) if(simd : D > 1) reduction(+ : a0, a1, a2, energy_rate) \
-    reduction(max : max_mu, max_signal)
+    reduction(max : max_mu, max_signal) reduction(+ : s0, s1, s2, s3)
     for (std::ptrdiff_t k = 0; k < count; ++k) {
       const auto pf = pair_force<D, K, TermList, track_signal>(
           local, terms, i, nb[static_cast<std::size_t>(k)], signal_beta);
@@ -159,12 +176,19 @@ void compute_forces(Particles<D>& p, const NeighbourList<D>& list, const Particl
       }
       if constexpr (tracks_mu) max_mu = std::max(max_mu, pf.mu);
       if constexpr (track_signal) max_signal = std::max(max_signal, pf.signal);
+      if constexpr (with_sum) {
+        s0 += pf.sum.s[0];
+        s1 += pf.sum.s[1];
+        s2 += pf.sum.s[2];
+        s3 += pf.sum.s[3];
+      }
     }
     const double acc[3] = {a0, a1, a2};
     for (int a = 0; a < D; ++a) p.acceleration[i][a] = acc[a];
     if constexpr (evolve_energy) p.energy_rate[i] = energy_rate;
     if constexpr (tracks_mu) fields.max_mu[i] = max_mu;
     if constexpr (track_signal) fields.max_signal[i] = max_signal;
+    if constexpr (with_sum) (*sums)[i] = PairSum{{s0, s1, s2, s3}};
   }
 }
 

@@ -12,7 +12,7 @@
 /// | density (+ equation of state, + `after_density` hooks) | the scene has terms | rho, P, c, P/rho^2; rho-dot, div v, curl v if a term needs them |
 /// | gradient (a second loop over the same list) | a term has a gradient pass | the terms' own fields |
 /// | `before_force` hooks | a term has one | the terms' own fields |
-/// | force | the scene has terms | a, du/dt, max mu |
+/// | force | the scene has terms | a, du/dt, max mu; a term's force-pass sums, finished per particle |
 /// | `after_force` hooks | a term has one | a, du/dt (per-particle terms) |
 /// | self-gravity | Gravity is not NoGravity | a |
 /// | external potential | External is not NoExternalPotential | a |
@@ -141,11 +141,13 @@ class Simulation {
       if constexpr (TermList::template any_before_force<D>) before_force();
       if (pair_signal()) {
         compute_forces<D, K, TermList, evolve_energy, true>(particles_, search_.list(), view(),
-                                                            terms_, fields_, settings_.signal_beta);
+                                                            terms_, fields_, settings_.signal_beta,
+                                                            &force_sums_);
       } else {
         compute_forces<D, K, TermList, evolve_energy>(particles_, search_.list(), view(), terms_,
-                                                      fields_);
+                                                      fields_, 0.0, &force_sums_);
       }
+      if constexpr (TermList::template any_force_sum<D>) finish_force_sums();
       if constexpr (TermList::template any_after_force<D>) after_force();
       if constexpr (keeps_hydro_acceleration) hydro_acceleration_ = particles_.acceleration;
     } else {
@@ -429,6 +431,16 @@ class Simulation {
     }
   }
 
+  // The sums a term took in the force pass, finished particle by particle (before after_force,
+  // which may use them).
+  void finish_force_sums() {
+    const ParticleView<D> in = view();
+    per_particle([&](auto& t, std::size_t i) {
+      if constexpr (HasForceSum<std::decay_t<decltype(t)>, D>)
+        t.force_sum_finish(i, force_sums_[i], in);
+    });
+  }
+
   // The terms' before_force hooks, particle by particle.
   void before_force() {
     const ParticleView<D> in = view();
@@ -522,8 +534,9 @@ class Simulation {
   Settings settings_{};
   NeighbourSearch<D, K> search_;
   DerivedFields<D> fields_;
-  PositionArrays<D> positions_;   // the positions one array per axis, for the pair loops
-  PositionArrays<D> velocities_;  // the velocities likewise
+  std::vector<PairSum> force_sums_;  // a term's force-pass sums (terms.hpp), when one has them
+  PositionArrays<D> positions_;      // the positions one array per axis, for the pair loops
+  PositionArrays<D> velocities_;     // the velocities likewise
   static constexpr bool keeps_hydro_acceleration =
       hydro && TermList::template any_with_kick<D> && (Gravity::active || External::active);
   std::vector<Vec<D>> hydro_acceleration_;  // see hydro_acceleration()

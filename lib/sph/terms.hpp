@@ -14,6 +14,7 @@
 /// | `resize(n)` | set-up | allocates the term's own per-particle fields (members of the term) |
 /// | `after_density(i, view)` | density pass | per particle, right after rho_i, P_i, c_i |
 /// | `GradientSum<D>`, `gradient_pair(sum, pair, view)`, `gradient_finish(i, sum, view)` | gradient pass | a second loop over the same neighbour list |
+/// | `force_sum_pair(pair, view)`, `force_sum_finish(i, sum, view)` | force pass | up to four sums over the pairs, taken in the force loop itself, for what only the kicks use |
 /// | `before_force(i, view)` | before the force pass | per particle |
 /// | `bracket(pair, view)` | force pass | adds to the symmetric bracket \f$ P_i/\rho_i^2 + P_j/\rho_j^2 + \Pi_{ij} \f$ |
 /// | `heating(pair, view)` | force pass | with a bracket: the factor \f$ H_{ij} \f$ of its heating, in place of \f$ \tfrac12 B_{ij} \f$ |
@@ -60,6 +61,15 @@ struct Bracket {
   double heat = 0;  ///< the heating factor H_ij (summed only when some term has `heating`)
 };
 
+/// What one pair adds to a term's sums in the force pass (PairSum: up to four numbers, plain
+/// scalars so that the SIMD lanes keep them in registers).  A term whose per-particle sum is
+/// needed only after the forces -- Selhammar's neighbourhood velocity, which only the kicks use
+/// -- takes it here instead of in a gradient pass of its own, and saves that pass's loop over
+/// the neighbours.  One term of a scene at most may have such sums.
+struct PairSum {
+  double s[4] = {0, 0, 0, 0};
+};
+
 /// A non-central acceleration of particle i by one pair, and the heating of i that goes with
 /// it.  Plain scalars (the first D of `a` are used), so SIMD lanes keep them in registers.
 struct PairAcceleration {
@@ -97,6 +107,12 @@ concept HasGradientPass = requires(T t, typename T::template GradientSum<D>& sum
   t.gradient_finish(i, sum, view);
 };
 template <class T, int D>
+concept HasForceSum = requires(const T t, T tm, const Pair<D>& pair, const ParticleView<D>& view,
+                               std::size_t i, const PairSum& sum) {
+  { t.force_sum_pair(pair, view) } -> std::same_as<PairSum>;
+  tm.force_sum_finish(i, sum, view);
+};
+template <class T, int D>
 concept HasAfterDensity = requires(T t, std::size_t i, const ParticleView<D>& view) {
   t.after_density(i, view);
 };
@@ -127,10 +143,10 @@ concept HasTimestep = requires(const T t, std::size_t i, const ParticleView<D>& 
 /// Whether the step recognises at least one member of term T: a term whose members all have
 /// the wrong signature would otherwise be silently left out of the step.
 template <class T, int D>
-concept RecognisedTerm =
-    HasNeeds<T> || HasResize<T> || HasBracket<T, D> || HasPairAcceleration<T, D> ||
-    HasHeating<T, D> || HasGradientPass<T, D> || HasAfterDensity<T, D> || HasBeforeForce<T, D> ||
-    HasAfterForce<T, D> || HasWithKick<T, D> || HasSignalSpeed<T, D> || HasTimestep<T, D>;
+concept RecognisedTerm = HasNeeds<T> || HasResize<T> || HasBracket<T, D> ||
+    HasPairAcceleration<T, D> || HasHeating<T, D> || HasGradientPass<T, D> || HasForceSum<T, D> ||
+    HasAfterDensity<T, D> || HasBeforeForce<T, D> || HasAfterForce<T, D> || HasWithKick<T, D> ||
+    HasSignalSpeed<T, D> || HasTimestep<T, D>;
 
 /// The fields term T asks the density pass for.
 template <class T>
@@ -173,6 +189,11 @@ struct Terms {
   static constexpr bool any_pair_acceleration = (HasPairAcceleration<T, D> || ...);
   template <int D>
   static constexpr bool any_gradient_pass = (HasGradientPass<T, D> || ...);
+  /// How many terms take sums in the force pass (at most one may).
+  template <int D>
+  static constexpr int force_sum_terms = (int(HasForceSum<T, D>) + ... + 0);
+  template <int D>
+  static constexpr bool any_force_sum = force_sum_terms<D> > 0;
   template <int D>
   static constexpr bool any_after_density = (HasAfterDensity<T, D> || ...);
   template <int D>
@@ -242,6 +263,19 @@ inline PairAcceleration pair_acceleration_of(const Terms<T...>& terms, const Pai
       for (int k = 0; k < D; ++k) sum.a[k] += a.a[k];
       sum.heat += a.heat;
     }
+  });
+  return sum;
+}
+
+/// The force-pass sums of one pair: those of the one term that has them.
+template <int D, class... T>
+inline PairSum force_sum_of(const Terms<T...>& terms, const Pair<D>& pair,
+                            const ParticleView<D>& view) {
+  static_assert(Terms<T...>::template force_sum_terms<D> <= 1,
+                "at most one term of a scene may take sums in the force pass");
+  PairSum sum;
+  terms.for_each([&](const auto& t) {
+    if constexpr (HasForceSum<std::decay_t<decltype(t)>, D>) sum = t.force_sum_pair(pair, view);
   });
   return sum;
 }

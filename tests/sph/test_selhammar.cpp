@@ -385,8 +385,7 @@ TEST_CASE("collective term: a particle with no neighbour but itself", "[selhamma
        {sph::NeighbourhoodNormalisation::shepard, sph::NeighbourhoodNormalisation::as_printed}) {
     const Sim sim(q, unit_cube, Collective3(1.0, 64, norm));
     Collective3 term = sim.term<Collective3>();
-    Collective3::GradientSum<3> empty{};
-    term.gradient_finish(0, empty, sim.view());
+    term.force_sum_finish(0, sph::PairSum{}, sim.view());
     CHECK(term.rate[0] == 0.0);
     CHECK(term.neighbourhood_velocity[0] == Vec<3>(1, 0, 0));
     CHECK(term.relaxed(0, Vec<3>(1, 0, 0), 1.0) == Vec<3>(1, 0, 0));

@@ -258,35 +258,34 @@ struct SelhammarCollective {
     acceleration.assign(n, Vec<D>::Zero());
   }
 
-  // --- the gradient pass: eq 14 without i's own term --------------------------------------
-  /// What the gradient pass sums for particle i: the weights of its neighbours and their
-  /// weighted velocities (eq 14 without i's own term).
-  template <int Dim>
-  struct GradientSum {
-    double w = 0;              ///< sum of the weights
-    double wv[3] = {0, 0, 0};  ///< sum of the weighted velocities
-  };
-  void gradient_pair(GradientSum<D>& sum, const Pair<D>& p, const ParticleView<D>& in) const {
+  // --- the force-pass sums: eq 14 without i's own term -----------------------------------
+  /// What the force pass sums for particle i (terms.hpp, PairSum): the weights of its
+  /// neighbours, in `s[0]`, and their weighted velocities, in `s[1]` to `s[D]` (eq 14 without
+  /// i's own term).  Only the kicks use the neighbourhood's velocity, so the sums are taken in
+  /// the force loop itself, beside the forces, and need no loop over the neighbours of their own.
+  PairSum force_sum_pair(const Pair<D>& p, const ParticleView<D>& in) const {
     const double volume = (in.m[p.i] + in.m[p.j]) / (in.rho[p.i] + in.rho[p.j]);  // m_bar/rho_bar
     const double w = volume * K::value(p.r, p.h_bar);
-    sum.w += w;
-    for (int a = 0; a < D; ++a) sum.wv[a] += w * in.v[a][p.j];
+    PairSum sum;
+    sum.s[0] = w;
+    for (int a = 0; a < D; ++a) sum.s[1 + a] = w * in.v[a][p.j];
+    return sum;
   }
-  void gradient_finish(std::size_t i, GradientSum<D>& sum, const ParticleView<D>& in) {
+  void force_sum_finish(std::size_t i, const PairSum& sum, const ParticleView<D>& in) {
     Vec<D> v_i;
     for (int a = 0; a < D; ++a) v_i[a] = in.v[a][i];
-    if (!(sum.w > 0)) {  // no neighbour but itself: no neighbourhood, no collective term
+    if (!(sum.s[0] > 0)) {  // no neighbour but itself: no neighbourhood, no collective term
       neighbourhood_velocity[i] = v_i;
       rate[i] = 0;
       return;
     }
-    double norm = sum.w;
+    double norm = sum.s[0];
     if (normalisation == NeighbourhoodNormalisation::as_printed) {
       const double self = in.m[i] / in.rho[i] * K::value(0.0, in.h[i]);
       fell_back[i] = !(self < 1);
       if (self < 1) norm = 1 - self;
     }
-    for (int a = 0; a < D; ++a) neighbourhood_velocity[i][a] = sum.wv[a] / norm;
+    for (int a = 0; a < D; ++a) neighbourhood_velocity[i][a] = sum.s[1 + a] / norm;
     rate[i] = neighbours * eta * in.c[i] / in.h[i];
   }
 
