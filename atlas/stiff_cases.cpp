@@ -504,6 +504,31 @@ void near_vacuum(std::vector<Row>& rows, double spacing) {
   rows.push_back(run.row);
 }
 
+// One hot particle in a uniform 1D gas at rest: its internal energy `factor` times its
+// neighbours'.  A Sedov blast in miniature, in 1D, with nothing to smooth it.
+template <class Scene>
+void hot_particle(std::vector<Row>& rows, double factor, double spacing) {
+  const double gamma = 1.4;
+  const sph::GasState gas{1.0, 0.0, 1.0};
+  auto p = two_state_tube(gas, gas, gamma, spacing);
+  const std::size_t hot = p.size() / 2;
+  p.internal_energy[hot] *= factor;
+  const auto box = sph::Box<1>::periodic_box(sph::Vec<1>(-1.0), sph::Vec<1>(1.0));
+  Row row;
+  row.name = "one hot particle, u x " + number(factor, "%g");
+  RunLimits limits;
+  limits.t_end = 0.05;
+  Run<1> run =
+      run_case<Scene>(row, p, box, gamma, sph::SmoothingLengthRule::from_density(4), limits);
+  if (!run.particles.position.empty() && run.row.finite) {
+    double u_min = std::numeric_limits<double>::infinity();
+    for (double u : run.particles.internal_energy) u_min = std::min(u_min, u);
+    run.row.note = "least u at the end " + number(u_min) +
+                   " (the gas's own: " + number(p.internal_energy[0]) + ")";
+  }
+  rows.push_back(run.row);
+}
+
 template <class Scene>
 void opening_vacuum(std::vector<Row>& rows, double spacing, const std::string& exact_says) {
   const double gamma = 1.4;
@@ -621,8 +646,10 @@ std::string findings(const std::vector<Row>& rows) {
            r.message.find("cooling") != std::string::npos;
   });
   if (!only_own.empty() && by_cooling)
-    md << "  In each, the symmetric form stopped because the time step collapsed, limited by the "
-          "cooling of a cold particle beside a hot one (the column of limits says how often).";
+    md << "  In each, the symmetric form stopped on the cooling of a cold particle beside a hot "
+          "one: the time step collapsed under the cooling limit, or the particle's internal "
+          "energy went negative within a step (the message says which; the column of limits "
+          "says how often cooling set the step).";
   if (!both_stop.empty()) md << "  Both stopped in " << list(both_stop) << ".";
   md << "\n";
   // Without viscosity.
@@ -695,7 +722,9 @@ void write_page(const std::string& path, const std::vector<Row>& rows, const Sed
         "from settled glasses); a "
         "near vacuum (rho and P of 1e-6 on the right, on one lattice, so the masses differ a "
         "million times); two halves of a gas flying apart at -8 and +8, faster than "
-        "2c/(gamma-1) each, so that a vacuum opens between them; Mach-100 colliding streams "
+        "2c/(gamma-1) each, so that a vacuum opens between them; one particle of a uniform 1D "
+        "gas at rest with 40 and 10^4 times its neighbours' internal energy (to t = 0.05); "
+        "Mach-100 colliding streams "
         "(sph::make_colliding_streams); Sod's tube with gamma = 1.01 and gamma = 10; the "
         "Sedov-Taylor blast below; Sod's tube moving at +10 against the same tube at rest "
         "(the errors compared in the rest frame), under each of the two time-step rules; and "
@@ -753,7 +782,7 @@ void write_page(const std::string& path, const std::vector<Row>& rows, const Sed
      << "- `--boost 100`: the tube moving at +100; compare its rest-frame errors and its "
         "steps with the tube at rest, under eq 7 (the own speed in the Courant limit) and "
         "under the signal velocity.\n"
-     << "- `--only sedov` (or strong, vacuum, streams, gamma, boost, degenerate): one group "
+     << "- `--only sedov` (or strong, vacuum, hot, streams, gamma, boost, degenerate): one group "
         "alone.\n";
 }
 
@@ -770,8 +799,8 @@ int main(int argc, char** argv) {
     chapter.parameter("--sedov-cells", par.sedov.cells, "Sedov blast: lattice cells per axis")
         .check(app::at_least(8));
     chapter.parameter("--only", par.only,
-                      "run only the groups whose name contains this: strong, vacuum, streams, "
-                      "gamma, boost, degenerate, sedov");
+                      "run only the groups whose name contains this: strong, vacuum, hot, "
+                      "streams, gamma, boost, degenerate, sedov");
     if (int rc = chapter.parse(); rc >= 0) return rc;
     const auto wanted = [&](const std::string& group) {
       return par.only.empty() || group.find(par.only) != std::string::npos;
@@ -811,6 +840,14 @@ int main(int argc, char** argv) {
       }
       opening_vacuum<SymmetricViscous<1>>(rows, spacing_1d, exact_says);
       opening_vacuum<OwnWorkViscous<1>>(rows, spacing_1d, exact_says);
+    }
+
+    if (wanted("hot")) {
+      std::cerr << "One hot particle\n";
+      for (double factor : {40.0, 1e4}) {
+        hot_particle<SymmetricViscous<1>>(rows, factor, spacing_1d);
+        hot_particle<OwnWorkViscous<1>>(rows, factor, spacing_1d);
+      }
     }
 
     if (wanted("streams")) {

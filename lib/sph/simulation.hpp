@@ -517,7 +517,8 @@ class Simulation {
               to_string<D>(p.position[i]) + " has internal energy " + show(p.internal_energy[i]) +
               " at t = " + show(time_) +
               " (the step is too long for its cooling rate: lower the Courant factor, or use"
-              " the exact update of a term that has one)");
+              " the exact update of a term that has one" +
+              TermList::cooling_hints() + ")");
         }
       }
     }

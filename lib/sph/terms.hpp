@@ -23,6 +23,7 @@
 /// | `with_kick(i, dt, v_before, v, u)` | integrator | after each kick of particle i by dt, from velocity v_before to v: may change v (a term integrated exactly over the kick) and u (energy bookkeeping, or a per-particle coefficient's own equation); u is a dummy when the gas does not evolve it |
 /// | `signal_speed(i, view)` | time step | adds to the signal speed of the Courant criterion (eq 7) |
 /// | `timestep(i, view)`, `timestep_name` | time step | a limit of its own, reported by name when it limits |
+/// | `cooling_hint` | energy check | a sentence added to the message when a particle's internal energy goes negative |
 ///
 /// **The bracket.**  The momentum and energy equations of Selhammar (1997) eq 4 share one
 /// symmetric factor per pair: \f$ \mathbf a_i \mathrel{-}= m_j B_{ij} \nabla_i W_{ij} \f$ and
@@ -49,6 +50,7 @@
 #include <concepts>
 #include <cstddef>
 #include <tuple>
+#include <string>
 #include <type_traits>
 
 namespace sph {
@@ -111,6 +113,10 @@ concept HasForceSum = requires(const T t, T tm, const Pair<D>& pair, const Parti
                                std::size_t i, const PairSum& sum) {
   { t.force_sum_pair(pair, view) } -> std::same_as<PairSum>;
   tm.force_sum_finish(i, sum, view);
+};
+template <class T>
+concept HasCoolingHint = requires {
+  { T::cooling_hint } -> std::convertible_to<const char*>;
 };
 template <class T, int D>
 concept HasAfterDensity = requires(T t, std::size_t i, const ParticleView<D>& view) {
@@ -202,6 +208,16 @@ struct Terms {
   static constexpr bool any_after_force = (HasAfterForce<T, D> || ...);
   template <int D>
   static constexpr bool any_with_kick = (HasWithKick<T, D> || ...);
+  /// The terms' hints for the message of a negative internal energy (`cooling_hint`), joined.
+  static std::string cooling_hints() {
+    std::string text;
+    (
+        [&] {
+          if constexpr (HasCoolingHint<T>) text += std::string("; ") + T::cooling_hint;
+        }(),
+        ...);
+    return text;
+  }
   /// Whether any term reports \f$ \mu_{ij} \f$ (then the force pass keeps its maximum).
   static constexpr bool tracks_mu = (requires { T::tracks_mu; } || ...);
 

@@ -164,3 +164,24 @@ TEST_CASE("strong shocks run to the end with the own-pressure work", "[strong-sh
     CHECK(own.momentum_residual <= 1e-13);
   }
 }
+
+TEST_CASE("a negative internal energy names the energy equation when it is the symmetric one",
+          "[strong-shocks]") {
+  // One particle of a uniform 1D gas at rest with 10^4 times its neighbours' internal energy:
+  // the symmetric form drives a neighbour's u negative in the first step, and the message says
+  // why and which form does not.
+  sph::Particles<1> p;
+  for (int k = -50; k < 50; ++k) {
+    p.add(sph::Vec<1>((k + 0.5) / 100), sph::Vec<1>(0.0), 0.01, k == 0 ? 2.5e4 : 2.5);
+  }
+  sph::Settings settings;
+  settings.smoothing = sph::SmoothingLengthRule::from_density(4);
+  const auto box = sph::Box<1>::periodic_box(sph::Vec<1>(-0.5), sph::Vec<1>(0.5));
+  sph::Simulation<Gas<sph::PressureHernquistKatz, 1>> symmetric(
+      p, box, sph::IdealGas(1.4), settings, sph::MonaghanGingold1983{1.0, 2.0});
+  CHECK_THROWS_WITH(symmetric.run_until(0.01),
+                    Catch::Contains("internal energy") && Catch::Contains("sph::PressureOwnWork"));
+  sph::Simulation<Gas<sph::PressureOwnWork, 1>> own(p, box, sph::IdealGas(1.4), settings,
+                                                    sph::MonaghanGingold1983{1.0, 2.0});
+  CHECK_NOTHROW(own.run_until(0.01));
+}

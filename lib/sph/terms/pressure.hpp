@@ -17,6 +17,11 @@ namespace sph {
 /// read: \f$ P_i/\rho_i^2 + P_j/\rho_j^2 \f$.
 struct PressureHernquistKatz {
   static constexpr const char* name = "Hernquist & Katz (1989)";
+  /// What the step adds to its message when a particle's internal energy goes negative.
+  static constexpr const char* cooling_hint =
+      "if the particle sits beside a much hotter one, this energy equation (the pair's work "
+      "shared equally) cools it at its neighbour's rate, which no step follows: the form in "
+      "which each particle does the work of its own pressure, sph::PressureOwnWork, does not";
   template <int D>
   Bracket bracket(const Pair<D>& pair, const ParticleView<D>& in) const {
     return {in.p_over_rho2[pair.i] + in.p_over_rho2[pair.j], 0.0};
