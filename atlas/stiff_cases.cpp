@@ -667,12 +667,9 @@ std::string findings(const std::vector<Row>& rows) {
   for (const char* rule : {", eq 7 step", ", signal-velocity step"}) {
     const Row *rest = nullptr, *moving = nullptr;
     for (const Row& r : rows) {
-      const bool of_rule =
-          r.name.size() > std::string(rule).size() &&
-          r.name.compare(r.name.size() - std::string(rule).size(), std::string::npos, rule) == 0;
-      if (!of_rule) continue;
-      if (r.name.rfind("Sod at rest", 0) == 0) rest = &r;
-      if (r.name.rfind("Sod moving", 0) == 0) moving = &r;
+      if (!r.name.ends_with(rule)) continue;
+      if (r.name.starts_with("Sod at rest")) rest = &r;
+      if (r.name.starts_with("Sod moving")) moving = &r;
     }
     if (!(rest && moving && rest->ran && moving->ran)) continue;
     const bool eq7 = std::string(rule) == ", eq 7 step";

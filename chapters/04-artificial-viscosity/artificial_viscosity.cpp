@@ -646,6 +646,7 @@ EtaScan step2_lattice_sums(const app::Chapter& chapter, const Parameters& par) {
       .xlabel("h/\\Delta x")
       .ylabel("|lattice sum - 1|")
       .yscale(plot::Scale::log)
+      .ylim(3e-8, 1.0)  // (room above the sums for the legend: they touch every lower corner)
       .line(scan.eta, gradient_error,
             {.label = "gradient sum S",
              .color = plot::blue,
@@ -657,7 +658,7 @@ EtaScan step2_lattice_sums(const app::Chapter& chapter, const Parameters& par) {
              .style = plot::Dash::dashed,
              .marker = plot::Marker::square,
              .marker_size = 7})
-      .legend(plot::Corner::lower_right);
+      .legend(plot::Corner::upper_right);
   fig.panel(1)
       .xlabel("h/\\Delta x")
       .ylabel("L_1(\\rho)")
