@@ -85,8 +85,9 @@ Axes& Axes::hide(bool hidden) {
     return *this;
 }
 
-Axes& Axes::legend(Corner corner) {
+Axes& Axes::legend(Corner corner, bool make_room) {
     legend_ = corner;
+    legend_room_ = make_room;
     return *this;
 }
 
@@ -325,6 +326,11 @@ Point Axes::to_pixel(double x, double y) const {
 
 void Axes::require_rendered() const {
     if (!r_.done) throw Error(name() + ": the figure has not been rendered yet");
+}
+
+Rect Axes::legend_box() const {
+    require_rendered();
+    return r_.legend_entries.empty() ? Rect{} : r_.legend_box;
 }
 
 Rect Axes::frame() const {

@@ -117,8 +117,11 @@ class Axes {
     Axes& ylim(double lo, double hi);
     Axes& xscale(Scale scale);
     Axes& yscale(Scale scale);
-    Axes& equal_aspect(bool on = true);          ///< one data unit is as long on x as on y
-    Axes& legend(Corner corner = Corner::best);  ///< show a legend of the labelled series
+    Axes& equal_aspect(bool on = true);  ///< one data unit is as long on x as on y
+    /// Show a legend of the labelled series.  With `make_room`, when the y limits are
+    /// automatic and the legend would hide data in every corner it may take, the y axis is
+    /// extended upwards until the legend fits above the data (a panel whose curves fill it).
+    Axes& legend(Corner corner = Corner::best, bool make_room = false);
     Axes& hide(bool hidden = true);  ///< leave this panel's cell empty (no frame, no letter)
     /// \}
 
@@ -163,6 +166,8 @@ class Axes {
     /// The plot area in pixels.  Its edges lie on pixel centres; the frame lines are centred
     /// on them.  A data point at the axis limits maps onto the edges.
     Rect frame() const;
+    /// The legend's box in pixels (empty when the panel has no legend).
+    Rect legend_box() const;
     /// Data -> pixel position in the final image (pixel (i, j) covers [i, i+1) × [j, j+1)).
     Point to_pixel(double x, double y) const;
     std::pair<double, double> xrange() const;  ///< the x limits used
@@ -244,6 +249,7 @@ class Axes {
                       bool horizontal) const;
     void place_legend(detail::Font& font);
     double legend_crowding(const Rect& box) const;
+    void make_legend_room(detail::Font& font, const Rect& frame_guess);
 
     // axes_draw.cpp: GL layers, then text
     void draw(detail::Canvas& canvas) const;
@@ -273,6 +279,7 @@ class Axes {
     bool equal_aspect_ = false;
     bool hidden_ = false;
     std::optional<Corner> legend_{};
+    bool legend_room_ = false;
     std::vector<Series> series_;
     std::vector<Layer> layers_;
     std::vector<Annotation> annotations_;

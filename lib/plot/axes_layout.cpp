@@ -103,6 +103,7 @@ Axes::Margins Axes::measure(Font& font, double font_size, const Rect& cell,
     if (hidden_) return {};
     resolve_limits();
     resolve_colorbar();
+    if (legend_room_ && legend_ && !ylim_) make_legend_room(font, frame_guess);
 
     r_.x_ticks = fit_ticks(font, xscale_, r_.x_lo, r_.x_hi, frame_guess.width(), true);
     r_.y_ticks = fit_ticks(font, yscale_, r_.y_lo, r_.y_hi, frame_guess.height(), false);
@@ -282,6 +283,30 @@ void Axes::place_legend(Font& font) {
         }
     }
     r_.legend_box = box_at(corner);
+}
+
+/// Room for the legend above the data: on a frame of about the final size, place the legend as
+/// it will be placed; if it would hide data even in the least crowded corner, raise the upper y
+/// limit so that the data ends an inset below the legend box of an upper corner (in log space
+/// on a logarithmic axis).  Called from measure(), before the ticks are chosen, so that the
+/// ticks and the margins are those of the extended range.
+void Axes::make_legend_room(Font& font, const Rect& frame_guess) {
+    r_.frame = frame_guess;
+    r_.done = true;  // to_pixel for the trial placement
+    place_legend(font);
+    const bool crowded = !r_.legend_entries.empty() && legend_crowding(r_.legend_box) > 0.0;
+    r_.done = false;
+    if (!crowded) return;
+    const Metrics m{r_.font};
+    // The fraction of the frame's height the legend takes from the top, with an inset below it.
+    const double taken = (r_.legend_box.height() + 2.5 * m.legend_inset()) / frame_guess.height();
+    if (!(taken > 0.0 && taken < 0.6)) return;  // a legend this tall: leave the data its room
+    const double stretch = 1.0 / (1.0 - taken);
+    if (yscale_ == Scale::log) {
+        r_.y_hi = r_.y_lo * std::pow(r_.y_hi / r_.y_lo, stretch);
+    } else {
+        r_.y_hi = r_.y_lo + (r_.y_hi - r_.y_lo) * stretch;
+    }
 }
 
 }  // namespace plot

@@ -287,3 +287,38 @@ TEST_CASE("render: hidden and empty panels", "[plot][render]") {
             blank = blank && image.at(x, y) == std::array<std::uint8_t, 3>{255, 255, 255};
     CHECK(blank);
 }
+
+TEST_CASE("render: a legend asked to make room sits above curves that fill every corner",
+          "[plot][render][legend]") {
+    // Two diagonals: each corner of the frame holds a curve's end, so no corner is free.
+    std::vector<double> x, up, down;
+    for (int i = 0; i <= 200; ++i) {
+        x.push_back(i / 200.0);
+        up.push_back(x.back());
+        down.push_back(1.0 - x.back());
+    }
+    auto hidden_points = [&](bool make_room, double& y_top) {
+        plot::Figure fig(1, 1, {.width = 800, .height = 600});
+        plot::Axes& ax = fig.panel(0, 0);
+        ax.xlabel("x").ylabel("y");
+        ax.line(x, up, {.label = "rising curve, labelled at length"});
+        ax.line(x, down, {.label = "falling curve"});
+        ax.legend(plot::Corner::best, make_room);
+        fig.save_png(output_dir + (make_room ? "/legend_room.png" : "/legend_no_room.png"));
+        const plot::Rect box = ax.legend_box();
+        int hidden = 0;
+        for (std::size_t i = 0; i < x.size(); ++i)
+            hidden +=
+                box.contains(ax.to_pixel(x[i], up[i])) + box.contains(ax.to_pixel(x[i], down[i]));
+        y_top = ax.yrange().second;
+        return hidden;
+    };
+    double top_without = 0, top_with = 0;
+    const int without = hidden_points(false, top_without);
+    const int with = hidden_points(true, top_with);
+    std::printf("plot: legend over data points: %d without room, %d with (y limit %.3f -> %.3f)\n",
+                without, with, top_without, top_with);
+    CHECK(without > 0);             // the case is the one it is meant to be
+    CHECK(with == 0);               // the legend hides nothing
+    CHECK(top_with > top_without);  // by a taller y axis, not by moving data
+}
