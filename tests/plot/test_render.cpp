@@ -217,7 +217,9 @@ TEST_CASE("render: a million-point scatter stays fast", "[plot][render][speed]")
     const double seconds =
         std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
     std::printf("plot: 10^6-point scatter, 1600×1200 px, render + PNG: %.2f s\n", seconds);
-    CHECK(seconds < 5.0);  // about 1 s on the reference machine; generous for loaded CI
+    // About 1 s on an idle 2-core machine.  Not a speed test (speed is measured by a benchmark,
+    // not by a test on a shared machine): the bound only catches a per-point cost gone quadratic.
+    CHECK(seconds < 30.0);
     CHECK(std::filesystem::file_size(path) > 10000);
 }
 
