@@ -36,6 +36,7 @@
 #include "sph/particles.hpp"
 
 #include <span>
+#include <utility>
 #include <string>
 
 namespace sph {
@@ -89,20 +90,20 @@ struct VelocitySums {
   double curl[3] = {0, 0, 0};
 };
 
-/// The velocity sums the scene needs, for one particle, in a loop of its own beside density_of.
-/// rho is never summed here: it comes from density_of whether or not a term asks for these
-/// fields, so asking cannot change rho in its last bit.  (One loop summing both cannot promise
-/// that: the compiler vectorises and contracts the two loop bodies differently.  With GCC 12 and
-/// AVX-512, density_of's loop ends in a 4-wide vector epilogue and a combined loop in a scalar
-/// one, and products fuse into FMAs differently, so the rho of such a loop differed from
-/// density_of's in the last bit for about half the particles of a 2D or 3D set;
-/// tests/sph/test_velocity_fields.cpp.)
+/// The density and the velocity sums the scene needs, for one particle, in one loop over its
+/// neighbours: the pair's separation, distance and kernel shape are computed once and serve
+/// both sums (Shape::evaluate gives W and dW/dq together).  rho is the same sum as
+/// density_of's, to round-off: the compiler may vectorise and contract the longer loop body
+/// differently (a different order of additions in the SIMD lanes, products fused into FMAs
+/// elsewhere), so rho may differ from density_of's in its last bits -- a scene that asks for
+/// velocity fields is not bitwise the scene that does not (tests/sph/test_velocity_fields.cpp
+/// bounds the difference).  Returns rho without the self term.
 template <int D, class K, Needs needs>
-VelocitySums velocity_sums(const Particles<D>& p, const NeighbourList<D>& list,
-                           const PositionView<D>& positions,
-                           const std::array<const double*, D>& velocities, std::size_t i,
-                           DensityForm form) {
+std::pair<double, VelocitySums> density_and_velocity_sums(
+    const Particles<D>& p, const NeighbourList<D>& list, const PositionView<D>& positions,
+    const std::array<const double*, D>& velocities, std::size_t i, DensityForm form) {
   constexpr bool curl = has(needs, Needs::velocity_curl) && D > 1;
+  using Shape = typename K::shape;
   const PositionView<D> x = positions;  // private copies: their pointers stay in registers
   const std::array<const double*, D> v = velocities;
   const double* h = p.smoothing_length.data();
@@ -110,8 +111,8 @@ VelocitySums velocity_sums(const Particles<D>& p, const NeighbourList<D>& list,
   const std::span<const Neighbour> nb = list.of(i);
   const auto count = static_cast<std::ptrdiff_t>(nb.size());
   const bool averaged = form.sum == DensityForm::Sum::pair_averaged;
-  double rate = 0, c0 = 0, c1 = 0, c2 = 0;
-#pragma omp simd simdlen(8) if (simd : D > 1) reduction(+ : rate, c0, c1, c2)
+  double rho = 0, rate = 0, c0 = 0, c1 = 0, c2 = 0;
+#pragma omp simd simdlen(8) if (simd : D > 1) reduction(+ : rho, rate, c0, c1, c2)
   for (std::ptrdiff_t k = 0; k < count; ++k) {
     const Neighbour& n = nb[static_cast<std::size_t>(k)];
     const std::size_t j = n.index;
@@ -124,7 +125,11 @@ VelocitySums velocity_sums(const Particles<D>& p, const NeighbourList<D>& list,
       rv += r_ij[a] * v_ij[a];
     }
     const double w = averaged ? 0.5 * (m[i] + m[j]) : m[j];
-    const double wg = w * K::gradient_factor(std::sqrt(r2), averaged ? 0.5 * (h[i] + h[j]) : h[i]);
+    const double inv_h = 1.0 / (averaged ? 0.5 * (h[i] + h[j]) : h[i]);
+    const auto shape = Shape::evaluate(std::sqrt(r2) * inv_h);
+    const double norm = K::sigma * power<D>(inv_h);
+    rho += w * (norm * shape.w);
+    const double wg = w * (norm * inv_h * inv_h * shape.dw_dq_over_q);
     rate += wg * rv;
     if constexpr (curl) {
       // v_ij x r_ij: in 2D its z-component only.
@@ -137,7 +142,7 @@ VelocitySums velocity_sums(const Particles<D>& p, const NeighbourList<D>& list,
       }
     }
   }
-  return {rate, {c0, c1, c2}};
+  return {rho, VelocitySums{rate, {c0, c1, c2}}};
 }
 
 /// Does nothing: the default for what compute_density does after each particle's sum.
@@ -153,8 +158,9 @@ struct NoFinish {
 ///
 /// With `needs` other than Needs::nothing, the same pass also writes the fields asked for into
 /// `fields` (density_rate, velocity_divergence, velocity_curl), from `velocities` one array
-/// per axis, by a second loop over each particle's neighbours (velocity_sums); without, the
-/// pass is the plain density sum and `velocities` is not read.  rho is the same in both.
+/// per axis, in the same loop over each particle's neighbours as rho
+/// (density_and_velocity_sums); without, the pass is the plain density sum and `velocities` is
+/// not read.  rho is the same sum in both, equal to round-off.
 template <int D, class K = Kernel<D>, Needs needs = Needs::nothing, class Finish = NoFinish>
 void compute_density(Particles<D>& p, const NeighbourList<D>& list,
                      const PositionView<D>& positions, DensityForm form = DensityForm::selhammar(),
@@ -170,9 +176,11 @@ void compute_density(Particles<D>& p, const NeighbourList<D>& list,
   long bad = -1;
 #pragma omp parallel for schedule(dynamic, 512) if (n >= parallel_threshold)
   for (std::size_t i = 0; i < n; ++i) {
-    const double rho = density_of<D, K>(p, list, positions, i, form);
+    double rho;
     if constexpr (rates) {
-      const VelocitySums sums = velocity_sums<D, K, needs>(p, list, positions, velocities, i, form);
+      const auto [sum, sums] =
+          density_and_velocity_sums<D, K, needs>(p, list, positions, velocities, i, form);
+      rho = sum + (form.self_term ? p.mass[i] * K::value(0.0, p.smoothing_length[i]) : 0.0);
       if constexpr (has(needs, Needs::density_rate)) fields->density_rate[i] = sums.rate;
       if constexpr (has(needs, Needs::velocity_divergence))
         fields->velocity_divergence[i] = -sums.rate / rho;
@@ -180,6 +188,8 @@ void compute_density(Particles<D>& p, const NeighbourList<D>& list,
         for (int a = 0; a < curl_components<D>; ++a)
           fields->velocity_curl[a][i] = sums.curl[a] / rho;
       }
+    } else {
+      rho = density_of<D, K>(p, list, positions, i, form);
     }
     p.density[i] = rho;
     if (std::isfinite(rho) && rho > 0) {

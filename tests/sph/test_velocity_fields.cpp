@@ -457,7 +457,13 @@ void check_rate_and_divergence(const sph::DensityForm& form) {
   CHECK(bad == 0);
 }
 
-// A scene whose terms do not ask gets no fields; asking changes neither rho nor h by a bit.
+// A scene whose terms do not ask gets no fields; asking changes h not at all and rho only by
+// round-off: with fields the pass sums rho in the same loop as the fields
+// (density_and_velocity_sums), whose longer body the compiler may vectorise and contract
+// differently from density_of's.  The bound: rho is a sum of N_ngb positive terms, each
+// rounded in a few operations, so two orders of summation differ by a few ulp times sqrt of the
+// count at worst; 16 epsilon is far below any difference of method (another h, another form of
+// the sum, a missed neighbour: 1e-3 and more).
 template <int D>
 void check_fields_on_request(const sph::DensityForm& form) {
   const auto box = sph::Box<D>::periodic_box(Vec<D>::Zero(), Vec<D>::Ones());
@@ -480,12 +486,17 @@ void check_fields_on_request(const sph::DensityForm& form) {
   for (const auto& c : all.velocity_curl) CHECK(c.size() == p.size());
   CHECK(plain.particles().smoothing_length == asked.particles().smoothing_length);
   std::size_t differ = 0;
+  double worst = 0;
   for (std::size_t i = 0; i < p.size(); ++i) {
-    differ += !(plain.particles().density[i] == asked.particles().density[i]);  // NaN differs
+    const double a = plain.particles().density[i], b = asked.particles().density[i];
+    differ += !(a == b);
+    worst = worse(worst, std::abs(a - b) / a);  // a NaN is the worst
   }
-  std::printf("rho with and without the fields %dD, %-24s %zu of %zu particles differ in any bit\n",
-              D, form_name(form), differ, p.size());
-  CHECK(differ == 0);
+  std::printf(
+      "rho with and without the fields %dD, %-24s %zu of %zu particles differ, worst %.1f "
+      "epsilon\n",
+      D, form_name(form), differ, p.size(), worst / eps);
+  CHECK(worst <= 16 * eps);
 }
 
 // rho-dot against the central difference (rho(x + eps v) - rho(x - eps v)) / (2 eps) at fixed
@@ -589,7 +600,7 @@ TEST_CASE("rho-dot equals -rho div v to round-off", "[velocity-fields]") {
   }
 }
 
-TEST_CASE("a term that does not ask gets no fields, and asking leaves rho unchanged to the bit",
+TEST_CASE("a term that does not ask gets no fields, and asking changes rho only by round-off",
           "[velocity-fields]") {
   for (const auto& form : all_forms) {
     check_fields_on_request<1>(form);
