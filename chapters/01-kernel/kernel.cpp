@@ -37,12 +37,12 @@
 /// B-spline: four unit top-hats convolved with each other.  Start from the top-hat
 /// \f$ B_1(q) = 1 \f$ on \f$ |q| < \frac12 \f$; convolving it with itself gives the triangle
 /// \f$ B_2 \f$ on \f$ |q| < 1 \f$, once more the piecewise quadratic \f$ B_3 \f$ on
-/// \f$ |q| < \frac32 \f$, and once more the piecewise cubic \f$ B_4 \f$ on \f$ |q| < 2 \f$, which is
-/// \f$ \frac23 w(q) \f$.  Every convolution with a top-hat integrates once, so it makes the
-/// result one derivative smoother and keeps its integral at one.  That origin explains the
-/// kernel's virtues.  It is a piecewise cubic whose value, slope and curvature are continuous
-/// (C², point 4); it is positive and has unit integral in 1D by construction; and in 1D its
-/// Fourier transform is the product of the four top-hats' transforms,
+/// \f$ |q| < \frac32 \f$, and once more the piecewise cubic \f$ B_4 \f$ on \f$ |q| < 2 \f$,
+/// which is \f$ \frac23 w(q) \f$.  Every convolution with a top-hat integrates once, so it
+/// makes the result one derivative smoother and keeps its integral at one.  That origin
+/// explains the kernel's virtues.  It is a piecewise cubic whose value, slope and curvature
+/// are continuous (C², point 4); it is positive and has unit integral in 1D by construction;
+/// and in 1D its Fourier transform is the product of the four top-hats' transforms,
 /// \f[ \hat W(k) = \left(\frac{\sin(kh/2)}{kh/2}\right)^4 \qquad (D = 1), \f]
 /// which we shall meet again in chapter 2, where it decides how accurately a lattice of
 /// particles represents a uniform density.  It is also the lowest-order spline that is C² --
@@ -87,6 +87,8 @@
 /// The output is deterministic: it does not depend on the machine or the number of threads.
 
 #include "app/chapter.hpp"
+#include "app/kernel/kernel_figure.hpp"
+#include "app/text.hpp"
 #include "plot/figure.hpp"
 #include "sph/kernel.hpp"
 
@@ -107,6 +109,15 @@ using std::numbers::pi;
 /// with the composite Simpson rule, which is then exact up to round-off for integrands that
 /// are polynomials of degree three and accurate to \f$ O(\delta q^4) \f$ for the higher powers
 /// of q that the moments bring in.  `intervals` is the number of Simpson intervals per piece.
+///
+/// Why split at the knot?  A Simpson panel that straddled \f$ q = 1 \f$ would integrate a
+/// function that is one cubic on the left of a point inside it and another on the right; there
+/// the rule is no longer exact, and the 1D normalisation, a cubic on each piece, would carry a
+/// quadrature error instead of round-off.  With the knot on a panel boundary each piece is a
+/// single polynomial, and the error of the rule is that of a smooth integrand,
+/// \f$ -\frac{\delta q^4}{180} \left[ f'''(b) - f'''(a) \right] \f$ on each piece
+/// \f$ [a, b] \f$: it vanishes for cubics and falls sixteen-fold when the intervals double.  (The
+/// Wendland C2 kernel is one polynomial on the whole support; for it the split is harmless.)
 
 template <class F>
 double integrate_pieces(F f, int intervals) {
@@ -120,16 +131,14 @@ double integrate_pieces(F f, int intervals) {
   return total;
 }
 
-/// The surface of the unit sphere in D dimensions: 2, \f$ 2\pi \f$, \f$ 4\pi \f$.
-constexpr double unit_sphere_surface(int dimension) {
-  return dimension == 1 ? 2.0 : dimension == 2 ? 2.0 * pi : 4.0 * pi;
-}
-
 /// \f$ \int W\,dV \f$ for kernel K at smoothing length h: the normalisation test.  We integrate
-/// the dimensional W (not the shape) so that the library's \f$ h^{-D} \f$ is tested too.
+/// the dimensional W (not the shape) so that the library's \f$ h^{-D} \f$ is tested too.  With
+/// \f$ r = qh \f$ the integral over space becomes one over the two pieces,
+/// \f$ \int W\,dV = S_D\, h \int_0^2 W(qh, h)\, (qh)^{D-1}\, dq \f$, with the surface
+/// \f$ S_D \f$ of the unit sphere from `app::unit_sphere_surface`.
 template <int D, class K>
 double kernel_integral(double h, int intervals) {
-  return unit_sphere_surface(D) * h *
+  return app::unit_sphere_surface(D) * h *
          integrate_pieces([&](double q) { return K::value(q * h, h) * std::pow(q * h, D - 1); },
                           intervals);
 }
@@ -137,7 +146,7 @@ double kernel_integral(double h, int intervals) {
 /// \f$ \int r^2 W\, dV / h^2 \f$: the kernel's second moment in units of \f$ h^2 \f$.
 template <int D, class K>
 double second_moment(int intervals) {
-  return unit_sphere_surface(D) * K::sigma *
+  return app::unit_sphere_surface(D) * K::sigma *
          integrate_pieces(
              [](double q) { return q * q * K::shape::evaluate(q).w * std::pow(q, D - 1); },
              intervals);
@@ -176,6 +185,18 @@ double fourier_transform(double kh, int intervals) {
 /// We compare \f$ dW/dr \f$ with a centred difference of W at many radii, and report the worst
 /// relative error (with an absolute floor of \f$ 10^{-8} \f$ of the kernel's scale, since the
 /// derivative passes through zero at the origin and at the support).
+///
+/// Three choices in it deserve a word.  The step \f$ \delta r = 10^{-6} h \f$ sits near the
+/// balance of the two errors of a centred difference: its truncation error,
+/// \f$ \frac16 \delta r^2 W''' \f$, grows with \f$ \delta r \f$, while the round-off of
+/// subtracting two nearly equal values of W, about \f$ \epsilon W / \delta r \f$ with
+/// \f$ \epsilon \approx 10^{-16} \f$, shrinks with it; the two cross near
+/// \f$ \delta r \sim \epsilon^{1/3} h \f$, a few millionths of h.  The radii are
+/// \f$ r = 2hk/N \f$ for \f$ k = 1, \ldots, N-1 \f$: the origin and the edge of the support are
+/// approached but not sampled, and the sample \f$ k = N/2 \f$ falls on the knot \f$ q = 1 \f$,
+/// where the difference straddles both pieces -- two pieces whose slopes did not meet would show
+/// there.  And \f$ h = 0.7 \f$ rather than 1, so that a wrong power of h in the derivative's
+/// normalisation \f$ \sigma_D / h^{D+1} \f$ cannot hide.
 
 template <int D, class K>
 double worst_gradient_error(int samples) {
@@ -212,6 +233,15 @@ double worst_gradient_error(int samples) {
 /// every row -- suspiciously the same for both kernels, because it is the finite difference's
 /// error, not the kernel's (the results explain it).  And the last column, which is different
 /// for the two kernels at the same h: they do not smooth equally.
+///
+/// The reference values in the table below are typed as the papers print them, not as the
+/// simplified fractions of the text, so that each can be compared with its equation by eye:
+/// Watkins' \f$ \eta_d \f$ times \f$ \frac23 \f$ for the M4, and for the Wendland C2 Dehnen &
+/// Aly's \f$ \sigma = \frac54, \frac7\pi, \frac{21}{2\pi} \f$ for a support H, divided by
+/// \f$ 2^D \f$ because our support is \f$ H = 2h \f$ and \f$ H^{-D} = 2^{-D} h^{-D} \f$.  Within a
+/// row, the shape integral and the second moment use the dimensionless shape \f$ w(q) \f$ and the
+/// table's \f$ \sigma_D \f$; the volume integral uses the dimensional \f$ W(r, h) \f$ that every
+/// later chapter calls.  The first two test the table, the third the evaluator.
 
 struct Row {
   std::string kernel;
@@ -225,18 +255,12 @@ Row normalisation_row(const std::string& name, double sigma_reference, int inter
   Row row{name, D, 0, 0, 0, sigma_reference, 0, 0, 0};
   row.shape_integral = integrate_pieces(
       [](double q) { return K::shape::evaluate(q).w * std::pow(q, D - 1); }, intervals);
-  row.sigma_from_integral = 1.0 / (unit_sphere_surface(D) * row.shape_integral);
+  row.sigma_from_integral = 1.0 / (app::unit_sphere_surface(D) * row.shape_integral);
   row.sigma_library = K::sigma;
   row.volume_integral = kernel_integral<D, K>(0.37, intervals);
   row.gradient_error = worst_gradient_error<D, K>(2000);
   row.moment = second_moment<D, K>(intervals);
   return row;
-}
-
-std::string format(const char* pattern, double value) {
-  char text[64];
-  std::snprintf(text, sizeof text, pattern, value);
-  return text;
 }
 
 // The kernels of the chapter: the M4 and the Wendland C2 in 1D, 2D and 3D.
@@ -268,15 +292,15 @@ void step4_normalisation_table(app::Chapter& chapter, int intervals) {
     const std::string who = r.kernel + " in " + std::to_string(r.dimension) + "D";
     chapter.check(
         std::abs(r.volume_integral - 1.0) < 1e-10,
-        who + ": int W dV = " + format("%.15f", r.volume_integral) + ", expected 1 to 1e-10");
+        who + ": int W dV = " + app::format("%.15f", r.volume_integral) + ", expected 1 to 1e-10");
     chapter.check(std::abs(r.sigma_library / r.sigma_reference - 1.0) < 1e-14,
-                  who + ": library sigma " + format("%.15f", r.sigma_library) +
-                      " differs from the reference " + format("%.15f", r.sigma_reference));
+                  who + ": library sigma " + app::format("%.15f", r.sigma_library) +
+                      " differs from the reference " + app::format("%.15f", r.sigma_reference));
     chapter.check(std::abs(r.sigma_from_integral / r.sigma_library - 1.0) < 1e-10,
-                  who + ": sigma from the quadrature " + format("%.15f", r.sigma_from_integral) +
-                      " differs from the library's");
+                  who + ": sigma from the quadrature " +
+                      app::format("%.15f", r.sigma_from_integral) + " differs from the library's");
     chapter.check(r.gradient_error < 1e-6, who + ": dW/dr differs from finite differences by " +
-                                               format("%.2e", r.gradient_error) +
+                                               app::format("%.2e", r.gradient_error) +
                                                " (relative), limit 1e-6");
   }
   // The exact shape integrals of the M4 quoted in the text: 3/4, 7/20, 1/4.
@@ -284,8 +308,8 @@ void step4_normalisation_table(app::Chapter& chapter, int intervals) {
   for (int d = 0; d < 3; ++d) {
     chapter.check(std::abs(rows[d].shape_integral - exact_integrals[d]) < 1e-10,
                   "M4 shape integral I_" + std::to_string(d + 1) + " = " +
-                      format("%.15f", rows[d].shape_integral) + ", expected " +
-                      format("%.4f", exact_integrals[d]));
+                      app::format("%.15f", rows[d].shape_integral) + ", expected " +
+                      app::format("%.4f", exact_integrals[d]));
   }
 
   /// The second moment \f$ \langle r^2 \rangle = \int r^2 W\, dV \f$ sets the leading
@@ -295,11 +319,11 @@ void step4_normalisation_table(app::Chapter& chapter, int intervals) {
   /// -- so a wave \f$ \sin kx \f$ is smoothed by \f$ 1 - k^2h^2/6 \f$, the leading term of
   /// \f$ \hat W(k) \f$ above.  The error is second order in h: halving h quarters it.
   chapter.check(std::abs(rows[0].moment - 1.0 / 3.0) < 1e-12,
-                "1D M4 second moment " + format("%.15f", rows[0].moment) + ", expected 1/3");
+                "1D M4 second moment " + app::format("%.15f", rows[0].moment) + ", expected 1/3");
   double worst_integral = 0;
   for (const Row& r : rows)
     worst_integral = std::max(worst_integral, std::abs(r.volume_integral - 1.0));
-  chapter.summary("error", "max |int W dV - 1| = " + format("%.1e", worst_integral));
+  chapter.summary("error", "max |int W dV - 1| = " + app::format("%.1e", worst_integral));
 }
 
 /// \section ch01_fourier_measured Step 5: the transform, measured
@@ -314,6 +338,14 @@ void step4_normalisation_table(app::Chapter& chapter, int intervals) {
 /// <b>What to look for.</b>  A 1D difference of round-off size, \f$ 10^{-12} \f$ or less; a 3D
 /// minimum below zero for the M4, near \f$ kh \approx 8 \f$, and a positive one for the
 /// Wendland C2.
+///
+/// The scans are plain grids.  The 1D comparison takes kh in steps of 0.05; at kh = 20 the
+/// integrand \f$ W \cos(kh\, q) \f$ oscillates with a period of 0.31 in q, which still leaves
+/// about a hundred Simpson intervals per period at the quick setting of 400 per piece, so the
+/// quadrature resolves the transform over the whole range.  The 3D search takes steps of 0.01.
+/// The M4's 3D transform is negative between its zero at \f$ kh = 2\pi \f$ and kh of about 9
+/// (and again, more weakly, beyond \f$ 4\pi \f$), so the grid puts more than two hundred points
+/// in the lobe and finds its deepest point to 0.01 in kh.
 
 /// The deepest point of the 3D M4 transform, and the smallest value of the 3D Wendland C2's.
 struct Lobe {
@@ -348,12 +380,12 @@ Lobe step5_transform_measured(app::Chapter& chapter, int intervals) {
       "  M4 %.3e (at kh = %.2f), Wendland C2 %.3e\n",
       lobe.m4_min, lobe.m4_at, lobe.c2_min);
   chapter.check(worst_fourier < 1e-9, "1D M4 transform differs from the B-spline formula by " +
-                                          format("%.2e", worst_fourier));
+                                          app::format("%.2e", worst_fourier));
   chapter.check(lobe.m4_min < -1e-4, "expected a negative lobe of the 3D M4 transform, minimum " +
-                                         format("%.3e", lobe.m4_min));
+                                         app::format("%.3e", lobe.m4_min));
   chapter.check(lobe.c2_min > -1e-9,
-                "the 3D Wendland C2 transform went negative: " + format("%.3e", lobe.c2_min));
-  chapter.summary("m4_3d_fourier_min", format("%.4e", lobe.m4_min));
+                "the 3D Wendland C2 transform went negative: " + app::format("%.3e", lobe.c2_min));
+  chapter.summary("m4_3d_fourier_min", app::format("%.4e", lobe.m4_min));
   return lobe;
 }
 
@@ -371,78 +403,37 @@ Lobe step5_transform_measured(app::Chapter& chapter, int intervals) {
 /// the same h (the \f$ h^{-D} \f$ and \f$ \sigma_D \f$ spread the same unit integral over more
 /// volume); in (c), that the 3D curves vanish at the centre; in (d), the blue solid curve dipping
 /// below the dotted zero line while the blue dashed one stays above it.
+///
+/// The step samples each kernel at \f$ h = 1 \f$ over \f$ 0 \le q \le 2.2 \f$, a little past the
+/// support so that each curve is seen to arrive at zero and stay there, and each transform over
+/// \f$ 0 \le kh \le 20 \f$ with the quadrature of Step 2.  The drawing -- the panels, their labels
+/// and legends, the magnified range of (d) -- is `app::save_kernel_figure`
+/// (`lib/app/kernel/kernel_figure.hpp`); what the chapter decides is what is compared: the colour
+/// gives the dimension, the dash the kernel, and the note in (d) marks the minimum that Step 5
+/// found.
 
-struct Curves {
-  std::vector<double> q, value, slope, weight;
-};
-
-template <int D, class K>
-Curves kernel_curves(int samples) {
-  Curves c;
-  for (int k = 0; k <= samples; ++k) {
-    const double q = 2.2 * k / samples;
-    c.q.push_back(q);
-    c.value.push_back(K::value(q, 1.0));
-    c.slope.push_back(K::derivative(q, 1.0));
-    c.weight.push_back(unit_sphere_surface(D) * std::pow(q, D - 1) * K::value(q, 1.0));
-  }
-  return c;
-}
-
-template <int D, class K>
-void draw_kernel(plot::Figure& figure, int samples, plot::Color color, plot::Dash dash,
-                 const std::string& label) {
-  const Curves c = kernel_curves<D, K>(samples);
-  figure.panel(0).line(c.q, c.value, {.label = label, .color = color, .style = dash, .width = 2.0});
-  figure.panel(1).line(c.q, c.slope, {.label = label, .color = color, .style = dash, .width = 2.0});
-  figure.panel(2).line(c.q, c.weight,
-                       {.label = label, .color = color, .style = dash, .width = 2.0});
-}
-
-template <int D, class K>
-void draw_fourier(plot::Axes& axes, int samples, int intervals, plot::Color color, plot::Dash dash,
-                  const std::string& label) {
-  std::vector<double> kh, transform;
-  for (int k = 0; k <= samples; ++k) {
-    kh.push_back(20.0 * k / samples);
-    transform.push_back(fourier_transform<D, K>(kh.back(), intervals));
-  }
-  axes.line(kh, transform, {.label = label, .color = color, .style = dash, .width = 2.0});
-}
-
-// The figure, written to `kernel.png` in the output directory.
 void step6_figure(const app::Chapter& chapter, int intervals, int samples, const Lobe& lobe) {
-  plot::Figure figure(2, 2, {.width = 1600, .height = 1200});
-  figure.title("The M4 cubic spline (solid) and the Wendland C2 kernel (dashed), support 2h");
-  figure.stamp(plot::Stamp{.kernel = "M4 and Wendland C2", .run_time = chapter.seconds()});
-  const plot::Color colours[] = {plot::black, plot::red, plot::blue};
-  draw_kernel<1, M4_1>(figure, samples, colours[0], plot::Dash::solid, "M4, 1D");
-  draw_kernel<2, M4_2>(figure, samples, colours[1], plot::Dash::solid, "M4, 2D");
-  draw_kernel<3, M4_3>(figure, samples, colours[2], plot::Dash::solid, "M4, 3D");
-  draw_kernel<1, C2_1>(figure, samples, colours[0], plot::Dash::dashed, "C2, 1D");
-  draw_kernel<2, C2_2>(figure, samples, colours[1], plot::Dash::dashed, "C2, 2D");
-  draw_kernel<3, C2_3>(figure, samples, colours[2], plot::Dash::dashed, "C2, 3D");
-  figure.panel(0).xlabel("q = r/h").ylabel("h^D W").legend(plot::Corner::upper_right);
-  figure.panel(1).xlabel("q = r/h").ylabel("h^{D+1} dW/dr").legend(plot::Corner::lower_right);
-  figure.panel(1).hline(0.0, {.color = plot::grey, .style = plot::Dash::dotted, .width = 1.0});
-  figure.panel(2)
-      .xlabel("q = r/h")
-      .ylabel("S_D q^{D-1} h^D W  (unit area)")
-      .legend(plot::Corner::upper_right);
-  plot::Axes& fourier = figure.panel(3);
-  draw_fourier<1, M4_1>(fourier, samples, intervals, colours[0], plot::Dash::solid,
-                        "M4, 1D = (sin(kh/2)/(kh/2))^4");
-  draw_fourier<3, M4_3>(fourier, samples, intervals, colours[2], plot::Dash::solid, "M4, 3D");
-  draw_fourier<3, C2_3>(fourier, samples, intervals, colours[2], plot::Dash::dashed, "C2, 3D");
-  fourier.hline(0.0, {.color = plot::grey, .style = plot::Dash::dotted, .width = 1.0});
-  fourier.text(lobe.m4_at + 0.6, lobe.m4_min,
-               "M4 in 3D < 0 near kh = " + format("%.1f", lobe.m4_at), {.color = plot::blue});
-  fourier.xlabel("kh")
-      .ylabel("Fourier transform of W (tail, magnified)")
-      .ylim(-0.002, 0.006)
-      .xlim(0, 20);
-  fourier.legend(plot::Corner::upper_right);
-  figure.save_png(chapter.figure_path("kernel.png"));
+  using plot::Dash;
+  const std::vector<app::KernelCurves> kernels = {
+      app::kernel_curves<1, M4_1>("M4, 1D", plot::black, Dash::solid, samples),
+      app::kernel_curves<2, M4_2>("M4, 2D", plot::red, Dash::solid, samples),
+      app::kernel_curves<3, M4_3>("M4, 3D", plot::blue, Dash::solid, samples),
+      app::kernel_curves<1, C2_1>("C2, 1D", plot::black, Dash::dashed, samples),
+      app::kernel_curves<2, C2_2>("C2, 2D", plot::red, Dash::dashed, samples),
+      app::kernel_curves<3, C2_3>("C2, 3D", plot::blue, Dash::dashed, samples)};
+  const std::vector<app::TransformCurve> transforms = {
+      app::transform_curve("M4, 1D = (sin(kh/2)/(kh/2))^4", plot::black, Dash::solid, samples,
+                           [&](double kh) { return fourier_transform<1, M4_1>(kh, intervals); }),
+      app::transform_curve("M4, 3D", plot::blue, Dash::solid, samples,
+                           [&](double kh) { return fourier_transform<3, M4_3>(kh, intervals); }),
+      app::transform_curve("C2, 3D", plot::blue, Dash::dashed, samples,
+                           [&](double kh) { return fourier_transform<3, C2_3>(kh, intervals); })};
+  app::save_kernel_figure(
+      chapter.figure_path("kernel.png"),
+      "The M4 cubic spline (solid) and the Wendland C2 kernel (dashed), support 2h",
+      plot::Stamp{.kernel = "M4 and Wendland C2", .run_time = chapter.seconds()}, kernels,
+      transforms,
+      {lobe.m4_at + 0.6, lobe.m4_min, "M4 in 3D < 0 near kh = " + app::format("%.1f", lobe.m4_at)});
   std::printf("\nFigure: kernel.png in the output directory\n");
 }
 

@@ -46,8 +46,12 @@
 /// -- lattices, glasses, calibrated masses -- come from Steps 3 and 5.
 
 #include "app/chapter.hpp"
-#include "app/error_figure.hpp"
+#include "app/density/density_figures.hpp"
+#include "app/density/density_timing.hpp"
+#include "app/sample_statistics.hpp"
 #include "app/stopwatch.hpp"
+#include "app/text.hpp"
+#include "app/density/uniform_set_measures.hpp"
 #include "plot/figure.hpp"
 #include "sph/convergence.hpp"
 #include "sph/density.hpp"
@@ -55,8 +59,6 @@
 #include "sph/neighbours.hpp"
 #include "sph/relax.hpp"
 #include "sph/setups/watkins_static.hpp"
-
-#include <omp.h>
 
 #include <algorithm>
 #include <cmath>
@@ -68,12 +70,6 @@
 namespace {
 
 using sph::Vec;
-
-std::string format(const char* pattern, double a, double b = 0, double c = 0) {
-  char text[256];
-  std::snprintf(text, sizeof text, pattern, a, b, c);
-  return text;
-}
 
 /// The parameters of the static tests, set from the command line in `main`.
 struct Setup {
@@ -100,33 +96,34 @@ struct Setup {
 /// dimensions (eq A7 in 2D), \f$ h = \frac12 (N m / V_D \rho)^{1/D} \f$ with \f$ V_D \f$ the
 /// volume of the unit ball.
 ///
+/// One consequence is worth writing down, because it holds at every particle number.  With the
+/// mean spacing \f$ \Delta x \f$ defined by \f$ m = \rho\, \Delta x^3 \f$, eq A5 reads
+/// \f$ \frac43\pi (2h)^3 = N_{\rm kernel}\, \Delta x^3 \f$, so
+/// \f[ \frac{2h}{\Delta x} = \left(\frac{3 N_{\rm kernel}}{4\pi}\right)^{1/3}, \f]
+/// 2.43 for 60 neighbours whatever N is.  How far the kernel reaches, counted in particles, is
+/// fixed by the neighbour number alone: more particles make h smaller, not the kernel fuller.
+/// Half that ratio is the \f$ \eta = h/\Delta x \f$ with which Step 4 describes lattices, 1.214
+/// for 60 neighbours; it returns as the \f$ \eta \f$ of the lattice that Step 5 calibrates.
+///
 /// <b>What to look for.</b>  The one line of output: \f$ h = 0.0710 \f$ for 5000 particles and
 /// 60 neighbours, a kernel radius \f$ 2h \f$ of 2.4 mean spacings.  Keep that picture: a kernel
-/// reaches two to three particles in every direction, no further.
-
-using sph::setups::watkins_smoothing_length;
+/// reaches two to three particles in every direction, no further.  (The step prints the kernel
+/// radius in mean spacings as \f$ 2h/m^{1/3} \f$: at density one a particle's volume is its
+/// mass, and the mean spacing is the side of that volume.)
 
 /// Every set in this chapter fills the periodic unit box with equal masses that make the mean
 /// density one, and starts with Watkins' constant h (`sph::setups::unit_box_particles`, which
 /// chapter 7 uses for the same sets).
 
 using sph::setups::unit_box;
-using sph::setups::unit_box_particles;
 
-/// The density step itself -- neighbour search with the fixed h, then the sum -- returning its
-/// wall-clock time.
-
-template <int D>
-double measure_density(sph::Particles<D>& p, sph::DensityForm form) {
-  const app::Stopwatch clock;
-  sph::NeighbourSearch<D> search;
-  search.update(p, unit_box<D>(), sph::SmoothingLengthRule::fixed());
-  sph::compute_density(p, search.list(), form);
-  return clock.seconds();
-}
+/// The density step itself is two library calls -- the neighbour search with the fixed h, then
+/// the sum -- which `app::timed_density_step` (`lib/app/density/density_timing.hpp`) makes and
+/// times. Steps 2 and 7 use it; Steps 4 to 6 write the two calls out, with their own box or rule.
 
 void step1_smoothing_length(const Setup& s) {
-  const double mass = 1.0 / s.particles, h = watkins_smoothing_length<3>(mass, s.neighbours, 1.0);
+  const double mass = 1.0 / s.particles,
+               h = sph::setups::watkins_smoothing_length<3>(mass, s.neighbours, 1.0);
   std::printf(
       "Step 1: Watkins' constant h (eq A6): N = %d, m = %.3e, N_kernel = %g\n"
       "  -> h = %.5f, 2h = %.4f = %.2f mean spacings\n\n",
@@ -150,8 +147,27 @@ void step1_smoothing_length(const Setup& s) {
 /// a quarter.  Because \f$ m/h^3 \propto 1/N_{\rm kernel} \f$, the scatter falls only as
 /// \f$ N_{\rm kernel}^{-1/2} \f$.
 ///
+/// The integral is a plain number: for the M4, \f$ \int_0^2 q^2 w^2\, dq = \frac{491}{5040} \f$,
+/// and eq A6 gives \f$ m/h^3 = 32\pi / (3 N_{\rm kernel}) \f$, so
+/// \f[ \sigma_\rho \approx \left(\frac{128}{3 N_{\rm kernel}} \cdot \frac{491}{5040}\right)^{1/2}
+///     \approx \frac{2.04}{\sqrt{N_{\rm kernel}}} , \f]
+/// 0.263 at 60 neighbours, 0.372 at 30 and 0.186 at 120.  The program keeps the exact form,
+/// \f$ (N-1)\, m^2 (\int W^2 dV - 1) \f$, whose correction for a finite N is small, and
+/// integrates \f$ W^2 \f$ by the midpoint rule (`random_scatter_theory` below).
+///
 /// One random set is one draw.  To judge the paper's numbers we draw several sets and
-/// report the spread of their mean and \f$ \sigma_\rho \f$.
+/// report the spread of their mean and \f$ \sigma_\rho \f$.  Each draw has its own seed
+/// (1, 2, ...), so the sets are independent and every run draws the same ones.  Over the draws
+/// we take the mean and the sample standard deviation (`app::sample_statistics`, with the
+/// \f$ n - 1 \f$ of an unbiased variance), and the two answer different questions.  The
+/// spread is how far a *single* draw scatters -- the yardstick for the paper, which drew one
+/// set -- so the paper's distance from our averages is quoted in units of it.  The average
+/// itself is known much better, to the standard error \f$ \text{spread}/\sqrt{n} \f$, and that
+/// is what the check on the mean density uses.
+///
+/// The first draw is measured a second time with the self term included, and the table prints
+/// the self term \f$ m W(0, h) \f$ beside the resulting mean, so that the 18 % of the argument
+/// above can be read off directly.
 ///
 /// <b>What to look for.</b>  The average over the draws against the Poisson theory: they should
 /// agree to well within the spread between draws (they do, to 0.0006 in \f$ \sigma_\rho \f$).
@@ -159,21 +175,9 @@ void step1_smoothing_length(const Setup& s) {
 /// deviations of a single draw from our averages -- plausible for the one set they drew, though
 /// their mean is a little high.  And the line with the self term: every density 18 % too high.
 
-struct Statistics {
-  double mean = 0, spread = 0;  // mean over draws, standard deviation over draws
-};
-
-Statistics statistics(const std::vector<double>& values) {
-  Statistics s;
-  for (double v : values) s.mean += v / static_cast<double>(values.size());
-  for (double v : values)
-    s.spread += (v - s.mean) * (v - s.mean) / static_cast<double>(values.size() - 1);
-  s.spread = std::sqrt(s.spread);
-  return s;
-}
-
-/// The Poisson scatter of the density without self term, \f$ \sqrt{(N-1) m^2 (\int W^2 dV - 1)} \f$,
-/// with \f$ \int W^2 dV \f$ by the midpoint rule over the kernel radius.
+/// The Poisson scatter of the density without self term,
+/// \f$ \sqrt{(N-1) m^2 (\int W^2 dV - 1)} \f$, with \f$ \int W^2 dV \f$ by the midpoint rule over
+/// the kernel radius.
 double random_scatter_theory(int n, double h) {
   using K = sph::Kernel<3>;
   const int steps = 20000;
@@ -191,6 +195,9 @@ double random_scatter_theory(int n, double h) {
 /// that the average mean density is \f$ (N-1)/N \f$ within four standard errors of the average,
 /// and that the average \f$ \sigma_\rho \f$ is within 10 % of the theory -- loose enough for four
 /// draws in `--quick` mode, tight enough to catch a wrong self term (18 %) or a wrong h.
+/// The standard error is given an absolute floor of \f$ 10^{-3} \f$: four draws may by chance
+/// agree closely with one another, and a spread that came out small would then make the check
+/// fail on a difference no larger than the floor.
 
 struct RandomSets {
   sph::Particles<3> first;
@@ -202,19 +209,18 @@ RandomSets step2_random(app::Chapter& chapter, const Setup& s) {
   RandomSets result;
   double mean_with_self = 0;
   for (int draw = 0; draw < s.draws; ++draw) {
-    auto p = unit_box_particles<3>(
-        sph::uniform_random<3>(Vec<3>::Zero(), Vec<3>::Ones(), s.particles, 1 + draw),
-        s.neighbours);
-    measure_density(p, sph::DensityForm::watkins(false));
+    auto p = sph::setups::watkins_random_set<3>(s.particles, s.neighbours, 1 + draw);
+    app::timed_density_step(p, unit_box<3>(), sph::DensityForm::watkins(false));
     const auto scatter = sph::density_scatter(p.density);
     means.push_back(scatter.mean);
     sigmas.push_back(scatter.sigma);
     if (draw > 0) continue;
     result = {p, scatter.mean, scatter.sigma};
-    measure_density(p, sph::DensityForm::watkins(true));
+    app::timed_density_step(p, unit_box<3>(), sph::DensityForm::watkins(true));
     mean_with_self = sph::density_scatter(p.density).mean;
   }
-  const Statistics mean_stats = statistics(means), sigma_stats = statistics(sigmas);
+  const app::SampleStatistics mean_stats = app::sample_statistics(means),
+                              sigma_stats = app::sample_statistics(sigmas);
   const double h = result.first.smoothing_length[0], mass = result.first.mass[0];
   const double expected_mean = (s.particles - 1.0) / s.particles,
                sigma_theory = random_scatter_theory(s.particles, h);
@@ -237,11 +243,11 @@ RandomSets step2_random(app::Chapter& chapter, const Setup& s) {
       (0.281 - sigma_stats.mean) / sigma_stats.spread);
   chapter.check(
       std::abs(mean_stats.mean - expected_mean) < 4 * mean_stats.spread / std::sqrt(s.draws) + 1e-3,
-      "random sets: average mean density " + format("%.4f", mean_stats.mean) +
+      "random sets: average mean density " + app::format("%.4f", mean_stats.mean) +
           " differs from (N-1)/N");
   chapter.check(std::abs(sigma_stats.mean / sigma_theory - 1.0) < 0.1,
-                "random sets: average sigma " + format("%.4f", sigma_stats.mean) +
-                    " differs from the Poisson theory " + format("%.4f", sigma_theory) +
+                "random sets: average sigma " + app::format("%.4f", sigma_stats.mean) +
+                    " differs from the Poisson theory " + app::format("%.4f", sigma_theory) +
                     " by more than 10 %");
   return result;
 }
@@ -261,8 +267,8 @@ RandomSets step2_random(app::Chapter& chapter, const Setup& s) {
 ///  - the M4 gradient vanishes as \f$ r \to 0 \f$ (chapter 1, Fig. b), so two particles that
 ///    start close together barely repel; the relaxing force keeps the kernel's steepest slope
 ///    inside \f$ q = 2/3 \f$ (Thomas & Couchman 1992), and pairs separate;
-///  - we stop when \f$ \sigma_\rho/\bar\rho \f$ has not improved by 1 % in 20 iterations, and return
-///    the best set seen.
+///  - we stop when \f$ \sigma_\rho/\bar\rho \f$ has not improved by 1 % in 20 iterations, and
+///    return the best set seen.
 ///
 /// We tried the tempting alternative of descending on the scatter itself,
 /// \f$ \sum_i (\rho_i - \bar\rho)^2 \f$: the scatter falls to \f$ 10^{-5} \f$ because the particles
@@ -279,6 +285,22 @@ RandomSets step2_random(app::Chapter& chapter, const Setup& s) {
 /// pressure, larger \f$ \gamma \f$, settling further in fewer iterations.  In the figure the
 /// settled densities fill a band of \f$ \pm 1\% \f$ with no trend in y, and the random ones
 /// scatter from 0.3 to 2.
+///
+/// How close did the random start put its particles?  Among the \f$ \frac12 N^2 \f$ pairs of a
+/// Poisson set in the unit box, each closer than r with probability \f$ \frac43 \pi r^3 \f$,
+/// about one pair lies within \f$ r = (3 / 2\pi N^2)^{1/3} \f$, that is
+/// \f$ r/\Delta x = (3/2\pi N)^{1/3} \f$: 0.05 mean spacings for N = 5000.  The relaxation has
+/// to push such pairs apart by a factor of ten, against a kernel whose slope vanishes at the
+/// centre, and the closest-pair column shows whether it did.  We measure the closest pair with
+/// the neighbour list of the fixed h (`app::closest_separation`): any pair closer than the
+/// kernel's radius is in that list, and a pair that matters here is far closer.  It is quoted
+/// in mean spacings, \f$ \Delta x = N^{-1/3} \f$, so that the check's 0.3 means the same at
+/// every N.
+///
+/// Each relaxation starts from its own copy of the first random set, so that the three
+/// exponents are compared from one start.  `settle` keeps the relaxed set, the library's report
+/// (the iterations, the scatter at each of them, the mean and scatter of the best set), the
+/// wall time and the closest pair.
 
 struct Settled {
   sph::Particles<3> particles;
@@ -287,17 +309,6 @@ struct Settled {
   double closest = 0;  // closest pair, in mean spacings
 };
 
-template <int D>
-double closest_pair(sph::Particles<D> p) {
-  sph::NeighbourSearch<D> search;
-  search.update(p, unit_box<D>(), sph::SmoothingLengthRule::fixed());
-  double closest = 1e300;
-  for (std::size_t i = 0; i < p.size(); ++i)
-    for (const auto& n : search.list().of(i))
-      closest = std::min(closest, search.list().separation(p.position, i, n).norm());
-  return closest / sph::root<D>(1.0 / static_cast<double>(p.size()));
-}
-
 Settled settle(const sph::Particles<3>& start, double gamma) {
   Settled s{start, {}, gamma, 0, 0};
   sph::RelaxOptions options;
@@ -305,7 +316,8 @@ Settled settle(const sph::Particles<3>& start, double gamma) {
   const app::Stopwatch clock;
   s.report = sph::relax_to_uniform_density(s.particles, unit_box<3>(), options);
   s.seconds = clock.seconds();
-  s.closest = closest_pair(s.particles);
+  s.closest = app::closest_separation(s.particles, unit_box<3>()) /
+              sph::root<3>(1.0 / static_cast<double>(s.particles.size()));
   return s;
 }
 
@@ -317,91 +329,62 @@ std::vector<Settled> step3_settled(app::Chapter& chapter, const RandomSets& rand
   std::vector<Settled> settled;
   for (double gamma : {1.0, 2.0, 3.0}) {
     const Settled& s = settled.emplace_back(settle(random.first, gamma));
-    const std::string who = "settled (gamma " + format("%.0f", gamma) + ")";
+    const std::string who = "settled (gamma " + app::format("%.0f", gamma) + ")";
     std::printf("  %-24s %10.4f %10.4f %10.2e %8d %9.2f %12.2f\n",
-                ("relaxed, P ~ rho^" + format("%.0f", gamma)).c_str(), s.report.final.mean,
+                ("relaxed, P ~ rho^" + app::format("%.0f", gamma)).c_str(), s.report.final.mean,
                 s.report.final.sigma, s.report.final.relative, s.report.iterations, s.seconds,
                 s.closest);
     chapter.check(
         s.report.final.relative < 0.01,
-        who + ": sigma/mean " + format("%.2e", s.report.final.relative) + " is not below 1 %");
-    chapter.check(s.closest > 0.3, who + ": closest pair " + format("%.2f", s.closest) +
+        who + ": sigma/mean " + app::format("%.2e", s.report.final.relative) + " is not below 1 %");
+    chapter.check(s.closest > 0.3, who + ": closest pair " + app::format("%.2f", s.closest) +
                                        " spacings: particles paired up");
   }
   const sph::DensityScatter& glass = settled[1].report.final;
   chapter.check(
       std::abs(glass.mean - 1.0) < 0.005,
-      "settled: mean density " + format("%.4f", glass.mean) + " is not within 0.5 % of 1");
+      "settled: mean density " + app::format("%.4f", glass.mean) + " is not within 0.5 % of 1");
   std::printf("  (the rows use the set with the smallest scatter; the figure shows gamma = 2)\n\n");
-  chapter.summary("error", "settled sigma = " + format("%.4f", glass.sigma) +
+  chapter.summary("error", "settled sigma = " + app::format("%.4f", glass.sigma) +
                                " (paper 0.004), random sigma = " +
-                               format("%.3f", random.first_sigma) + " (paper 0.281)");
+                               app::format("%.3f", random.first_sigma) + " (paper 0.281)");
   return settled;
 }
 
 /// The figure of Steps 2 and 3 shows what Watkins' Figs 1a and 3a show -- the density at every
 /// particle against its y coordinate -- with the same vertical ranges for both sets as a
-/// reader of the paper would want: \f$ \pm 2\% \f$ for the settled set, 0 to 2.2 for the random one.
-/// A third panel shows the scatter during the three relaxations against the paper's 0.004.
-
-std::vector<double> coordinate(const sph::Particles<3>& p, int axis) {
-  std::vector<double> v;
-  for (const auto& x : p.position) v.push_back(x[axis]);
-  return v;
-}
+/// reader of the paper would want: \f$ \pm 2\% \f$ for the settled set, 0 to 2.2 for the random
+/// one.  A third panel shows the scatter during the three relaxations against the paper's 0.004.
+///
+/// Against y, because the paper plots against y; any coordinate would do, since the box is
+/// periodic and the same in every direction.  What such a plot can show that the table cannot
+/// is a *trend*: a relaxation that swept particles towards one side, or a random generator with
+/// a preference, would tilt the band.  The drawing is `app::save_density_against_y_figure`
+/// (`lib/app/density/density_figures.hpp`); the chapter supplies the sets, their ranges and titles,
+/// the relaxation histories and the paper's value as the reference line.
 
 void draw_watkins_figure(app::Chapter& chapter, const Setup& s, const RandomSets& random,
                          const std::vector<Settled>& settled) {
-  const Settled& glass = settled[1];
-  plot::Figure figure(1, 3, {.width = 2100, .height = 650});
-  figure.title("Density at the particle positions, " + std::to_string(s.particles) +
-               " particles in a periodic unit box (Watkins et al. 1996, Figs 1a and 3a)");
-  figure.stamp(plot::Stamp{.scheme = "gather density, constant h (eq A6)",
-                           .kernel = "M4",
-                           .neighbours = s.neighbours,
-                           .particles = s.particles,
-                           .run_time = chapter.seconds()});
-  plot::Axes& a = figure.panel(0);
-  a.scatter(coordinate(glass.particles, 1), glass.particles.density,
-            {.label = "settled, self term included", .color = plot::black, .size = 2.5});
-  a.hline(1.0, {.label = "\\rho = 1", .color = plot::red, .style = plot::Dash::dashed});
-  a.xlabel("y [box lengths]")
-      .ylabel("\\rho [mean density]")
-      .xlim(0, 1)
-      .ylim(0.98, 1.02)
-      .legend(plot::Corner::upper_right);
-  a.title("settled: mean " + format("%.4f", glass.report.final.mean) +
-          ", \\sigma = " + format("%.4f", glass.report.final.sigma) + " (paper 0.999, 0.004)");
-  plot::Axes& b = figure.panel(1);
-  b.scatter(coordinate(random.first, 1), random.first.density,
-            {.label = "random, self term excluded", .color = plot::black, .size = 2.5});
-  b.hline(1.0, {.label = "\\rho = 1", .color = plot::red, .style = plot::Dash::dashed});
-  b.xlabel("y [box lengths]")
-      .ylabel("\\rho [mean density]")
-      .xlim(0, 1)
-      .ylim(0, 2.2)
-      .legend(plot::Corner::upper_right);
-  b.title("random: mean " + format("%.3f", random.first_mean) +
-          ", \\sigma = " + format("%.3f", random.first_sigma) + " (paper 1.013, 0.281)");
-  plot::Axes& c = figure.panel(2);
-  const plot::Color colours[] = {plot::blue, plot::black, plot::red};
-  for (std::size_t k = 0; k < settled.size(); ++k) {
-    std::vector<double> iteration;
-    for (std::size_t i = 0; i < settled[k].report.history.size(); ++i)
-      iteration.push_back(static_cast<double>(i));
-    c.line(iteration, settled[k].report.history,
-           {.label = "P \\propto \\rho^" + format("%.0f", settled[k].gamma),
-            .color = colours[k],
-            .width = 2.0});
-  }
-  c.hline(0.004,
-          {.label = "Watkins: \\sigma = 0.004", .color = plot::grey, .style = plot::Dash::dashed});
-  c.xlabel("relaxation iteration")
-      .ylabel("\\sigma_\\rho / mean \\rho")
-      .yscale(plot::Scale::log)
-      .legend(plot::Corner::upper_right);
-  c.title("settling the random set");
-  figure.save_png(chapter.figure_path("watkins_density.png"));
+  const sph::DensityScatter& glass = settled[1].report.final;
+  std::vector<app::RelaxationCurve> relaxations;
+  for (const Settled& r : settled)
+    relaxations.push_back({"P \\propto \\rho^" + app::format("%.0f", r.gamma), r.report.history});
+  app::save_density_against_y_figure<3>(
+      chapter.figure_path("watkins_density.png"),
+      "Density at the particle positions, " + std::to_string(s.particles) +
+          " particles in a periodic unit box (Watkins et al. 1996, Figs 1a and 3a)",
+      plot::Stamp{.scheme = "gather density, constant h (eq A6)",
+                  .kernel = "M4",
+                  .neighbours = s.neighbours,
+                  .particles = s.particles,
+                  .run_time = chapter.seconds()},
+      {settled[1].particles, "settled, self term included", 0.98, 1.02,
+       "settled: mean " + app::format("%.4f", glass.mean) +
+           ", \\sigma = " + app::format("%.4f", glass.sigma) + " (paper 0.999, 0.004)"},
+      {random.first, "random, self term excluded", 0, 2.2,
+       "random: mean " + app::format("%.3f", random.first_mean) +
+           ", \\sigma = " + app::format("%.3f", random.first_sigma) + " (paper 1.013, 0.281)"},
+      relaxations, {0.004, "Watkins: \\sigma = 0.004"});
 }
 
 /// \section ch02_lattice Step 4: the density of a lattice, and why it is not exact
@@ -413,23 +396,24 @@ void draw_watkins_figure(app::Chapter& chapter, const Setup& s, const RandomSets
 /// the integral \f$ \rho_0 \int W\, dV = \rho_0 \f$.  Poisson's summation formula says exactly
 /// how far apart they are: the lattice sum equals the sum of the kernel's Fourier transform over
 /// the reciprocal lattice,
-/// \f[ \frac{\rho_{\rm SPH}}{\rho_0} = \sum_{\mathbf k} \hat W\!\left(\frac{2\pi\mathbf k}{\Delta x}\right)
+/// \f[ \frac{\rho_{\rm SPH}}{\rho_0}
+///     = \sum_{\mathbf k} \hat W\!\left(\frac{2\pi\mathbf k}{\Delta x}\right)
 ///     = 1 + \sum_{\mathbf k \ne 0} \hat W\!\left(\frac{2\pi\mathbf k}{\Delta x}\right). \f]
 /// The error is the kernel's Fourier transform at the lattice's wavenumbers -- the "aliases" of
 /// the lattice.  In 1D, chapter 1 gave \f$ \hat W(k) = (\sin(kh/2)/(kh/2))^4 \f$, so with
 /// \f$ \eta = h/\Delta x \f$
 /// \f[ \frac{\rho_{\rm SPH}}{\rho_0} - 1 = 2 \sum_{k \ge 1}
 ///     \left(\frac{\sin \pi k \eta}{\pi k \eta}\right)^4 \ \ge 0, \f]
-/// +0.18 % at the common \f$ \eta = 1.2 \f$, zero at \f$ \eta = 1 \f$ and \f$ \eta = 2 \f$ (where the
-/// B-spline's knots fall on the particles), and bounded by \f$ 2\zeta(4)/(\pi\eta)^4 \approx
+/// +0.18 % at the common \f$ \eta = 1.2 \f$, zero at \f$ \eta = 1 \f$ and \f$ \eta = 2 \f$ (where
+/// the B-spline's knots fall on the particles), and bounded by \f$ 2\zeta(4)/(\pi\eta)^4 \approx
 /// 2.2/(\pi\eta)^4 \f$ in between.  In 2D and 3D the M4 is not a product of 1D splines, there
 /// are no exact zeros, and \f$ \hat W \f$ can be negative (chapter 1, Fig. d), so the bias can
 /// take either sign.
 ///
 /// Which wavenumbers enter depends on the lattice.  For the cubic lattice of spacing a the
-/// reciprocal vectors are \f$ 2\pi\mathbf n/a \f$ with integer \f$ \mathbf n \f$: six shortest ones of
-/// length \f$ 2\pi/a \f$.  The body-centred cubic lattice (two particles per cube of side a) has a
-/// face-centred reciprocal lattice whose twelve shortest vectors have length
+/// reciprocal vectors are \f$ 2\pi\mathbf n/a \f$ with integer \f$ \mathbf n \f$: six shortest ones
+/// of length \f$ 2\pi/a \f$.  The body-centred cubic lattice (two particles per cube of side a) has
+/// a face-centred reciprocal lattice whose twelve shortest vectors have length
 /// \f$ 2\sqrt2\,\pi/a \f$; the hexagonal lattice of spacing a has six of length
 /// \f$ 4\pi/(\sqrt3\, a) \f$.  Measured in mean spacings these shortest wavenumbers are
 /// \f$ 2\pi \f$ (cubic), \f$ 2.24\pi \f$ (bcc) and \f$ 2.15\pi \f$ (hexagonal): the denser
@@ -441,15 +425,20 @@ void draw_watkins_figure(app::Chapter& chapter, const Setup& s, const RandomSets
 /// The program measures the bias with the library itself -- a periodic lattice, the neighbour
 /// search, the density pass -- for cubic lattices in 1D, 2D and 3D, the hexagonal lattice in
 /// 2D and the body-centred cubic lattice in 3D, over a range of \f$ \eta \f$.  To compare
-/// lattices, \f$ \Delta x \f$ is the *mean* spacing \f$ (V/N)^{1/D} \f$, and the neighbour number is
-/// \f$ N_{\rm ngb} = V_D (2\eta)^D \f$ as in eq A5.
+/// lattices, \f$ \Delta x \f$ is the *mean* spacing \f$ (V/N)^{1/D} \f$, and the neighbour number
+/// is \f$ N_{\rm ngb} = V_D (2\eta)^D \f$ as in eq A5.
 ///
 /// <b>What to look for.</b>  The 1D column and the "1D Poisson" column are the same numbers:
 /// the library's density pass against the formula above, two independent computations.  Zeros
 /// at \f$ \eta = 1 \f$ and 2 in 1D and +0.18 % at 1.2; in 2D and 3D both signs, no lattice
 /// better than the others at every \f$ \eta \f$, and at the common 3D choice
-/// \f$ \eta = 1.2 \f$ (58 neighbours) biases from \f$ -0.49\% \f$ (bcc) to +0.08 % (cubic).  The last line shows the density equal at every particle of a lattice to
-/// \f$ 10^{-15} \f$: the periodic images are seamless.
+/// \f$ \eta = 1.2 \f$ (58 neighbours) biases from \f$ -0.49\% \f$ (bcc) to +0.08 % (cubic).
+/// The last line shows the density equal at every particle of a lattice to \f$ 10^{-15} \f$:
+/// the periodic images are seamless.
+///
+/// A lattice of the scan is named by its dimension and its type.  The dimension is a number
+/// known at run time, and a three-way dispatch below turns it into the template parameter of
+/// the measurement, which is written once for every D.
 
 struct LatticeCase {
   const char* name;
@@ -457,13 +446,17 @@ struct LatticeCase {
   sph::LatticeType type;
 };
 
-/// The relative density error \f$ \rho_{\rm SPH}/\rho_0 - 1 \f$ of a periodic lattice at
-/// \f$ h = \eta \Delta x \f$, and the spread of the density over the particles (zero up to
-/// round-off for a seamless lattice).
+/// The measurement returns the relative density error \f$ \rho_{\rm SPH}/\rho_0 - 1 \f$ of a
+/// periodic lattice at \f$ h = \eta \Delta x \f$, and the spread of the density over the
+/// particles (zero up to round-off for a seamless lattice).  A small box will do.  Every
+/// particle of a periodic lattice sees the same infinite lattice, because the neighbour search
+/// supplies as many periodic images as the kernel reaches, so 8 cells per side are enough even
+/// at \f$ \eta = 2.4 \f$, where the kernel reaches 4.8 spacings.  The hexagonal box is
+/// \f$ \sqrt3/2 \f$ as high as it is wide, so that its rows close on themselves across the
+/// periodic boundary.  The masses are \f$ \rho_0 V/N \f$ with \f$ \rho_0 = 1 \f$, so the bias is
+/// simply the density of particle 0 less one.
 template <int D>
 std::pair<double, double> lattice_bias(sph::LatticeType type, double eta) {
-  // Every particle of a seamless periodic lattice has the same density, so a small box will do:
-  // 8 cells, with the neighbour search supplying as many periodic images as the kernel reaches.
   const int cells = 8;
   Vec<D> upper = Vec<D>::Ones();
   if constexpr (D == 2) {
@@ -483,21 +476,18 @@ std::pair<double, double> lattice_bias(sph::LatticeType type, double eta) {
 }
 
 std::pair<double, double> lattice_bias(const LatticeCase& c, double eta) {
-  switch (c.dimension) {
-    case 1:
-      return lattice_bias<1>(c.type, eta);
-    case 2:
-      return lattice_bias<2>(c.type, eta);
-    default:
-      return lattice_bias<3>(c.type, eta);
-  }
+  if (c.dimension == 1) return lattice_bias<1>(c.type, eta);
+  if (c.dimension == 2) return lattice_bias<2>(c.type, eta);
+  return lattice_bias<3>(c.type, eta);
 }
 
 /// The 1D bias by Poisson summation, independent of the density code
 /// (`sph::m4_lattice_density_1d`).
 double poisson_bias_1d(double eta) { return sph::m4_lattice_density_1d(eta) - 1.0; }
 
-/// The step tabulates the bias at five values of \f$ \eta \f$ next to the Poisson sum, and
+/// The step tabulates the bias at five values of \f$ \eta \f$ next to the Poisson sum -- 1 and
+/// 2, the zeros of the 1D sum; 1.2, the common choice (58 neighbours in 3D); 1.24, the 64
+/// neighbours of Selhammar and of Step 7; 1.5, where every lattice is biased high -- and
 /// checks three things: the 1D bias equals the Poisson sum to \f$ 10^{-12} \f$ (two independent
 /// routes to one number), it is the +0.18 % quoted in the text, and the density of each lattice
 /// is the same at every particle to \f$ 10^{-10} \f$ (a lattice that did not tile its periodic box
@@ -546,63 +536,41 @@ LatticeScan step4_lattice_bias(app::Chapter& chapter, const Setup& s) {
               worst_spread);
   const double poisson = poisson_bias_1d(1.2), bias = scan.bias_1d_at_1_2;
   chapter.check(std::abs(bias - poisson) < 1e-12,
-                "1D lattice bias at eta = 1.2: " + format("%.3e", bias) + ", Poisson sum " +
-                    format("%.3e", poisson));
-  chapter.check(
-      std::abs(bias - 0.0018) < 0.0001,
-      "1D lattice bias at eta = 1.2 is " + format("%.4f %%", 100 * bias) + ", expected +0.18 %");
-  chapter.check(worst_spread < 1e-10,
-                "a lattice density varies over the particles by " + format("%.1e", worst_spread));
+                "1D lattice bias at eta = 1.2: " + app::format("%.3e", bias) + ", Poisson sum " +
+                    app::format("%.3e", poisson));
+  chapter.check(std::abs(bias - 0.0018) < 0.0001, "1D lattice bias at eta = 1.2 is " +
+                                                      app::format("%.4f %%", 100 * bias) +
+                                                      ", expected +0.18 %");
+  chapter.check(worst_spread < 1e-10, "a lattice density varies over the particles by " +
+                                          app::format("%.1e", worst_spread));
   return scan;
 }
 
 /// The lattice figure has the signed bias in per cent on the left, where the sign changes of
 /// the 2D and 3D lattices show, and its magnitude on a log scale on the right, with the 1D
-/// bound as the reference line.
+/// bound as the reference line.  The scan is finer than the table, steps of 0.01 in
+/// \f$ \eta \f$ (0.05 with `--quick`), because the 3D curves turn quickly: the cubic lattice
+/// goes from +0.08 % at \f$ \eta = 1.2 \f$ to \f$ -0.11\% \f$ at 1.24.  Look for the 1D curve
+/// touching zero at \f$ \eta = 1 \f$ and 2 and never crossing it, for the 2D and 3D curves that
+/// do cross, and, on the right, for every curve falling under the dotted bound beyond
+/// \f$ \eta \approx 1.6 \f$.  The drawing is `app::save_lattice_bias_figure`.
 
 void draw_lattice_figure(app::Chapter& chapter, const LatticeScan& scan) {
-  plot::Figure figure(1, 2, {.width = 1700, .height = 700});
-  figure.title("Density bias of a uniform lattice, \\rho_{SPH}/\\rho_0 - 1, against h / \\Delta x");
-  figure.stamp(plot::Stamp{.scheme = "gather density with self term, m = \\rho_0 \\Delta x^D",
-                           .kernel = "M4",
-                           .run_time = chapter.seconds()});
-  const plot::Color colours[] = {plot::black, plot::red, plot::orange, plot::blue, plot::cyan};
-  const plot::Dash dashes[] = {plot::Dash::solid, plot::Dash::solid, plot::Dash::dashed,
-                               plot::Dash::solid, plot::Dash::dashed};
-  for (int panel = 0; panel < 2; ++panel) {
-    for (std::size_t c = 0; c < scan.lattices.size(); ++c) {
-      std::vector<double> percent;
-      for (double b : scan.bias[c]) percent.push_back(panel == 0 ? 100 * b : 100 * std::abs(b));
-      figure.panel(panel).line(scan.eta, percent,
-                               {.label = panel == 0 ? scan.lattices[c].name : "",
-                                .color = colours[c],
-                                .style = dashes[c],
-                                .width = 2.0});
-    }
-    figure.panel(panel).xlabel("\\eta = h / \\Delta x  (mean spacing \\Delta x)").xlim(0.9, 2.4);
-  }
-  plot::Axes& a = figure.panel(0);
-  a.hline(0.0, {.color = plot::grey, .style = plot::Dash::dotted, .width = 1.0});
-  a.vline(1.2, {.color = plot::grey, .style = plot::Dash::dotted, .width = 1.0});
-  const std::vector<double> mark_x = {1.2}, mark_y = {100 * scan.bias_1d_at_1_2};
-  a.scatter(mark_x, mark_y,
-            {.label = "1D, \\eta = 1.2: +" + format("%.2f %%", 100 * scan.bias_1d_at_1_2),
-             .color = plot::black,
-             .size = 10.0});
-  a.ylabel("\\rho_{SPH}/\\rho_0 - 1  [%]").ylim(-0.8, 0.8).legend(plot::Corner::upper_right);
+  std::vector<app::LatticeBiasCurve> lattices;
+  for (std::size_t c = 0; c < scan.lattices.size(); ++c)
+    lattices.push_back({scan.lattices[c].name, scan.bias[c]});
   std::vector<double> bound;
   for (double eta : scan.eta) bound.push_back(100 * 2.2 / std::pow(std::numbers::pi * eta, 4));
-  plot::Axes& b = figure.panel(1);
-  b.line(scan.eta, bound,
-         {.label = "2.2/(\\pi\\eta)^4 (1D bound)",
-          .color = plot::grey,
-          .style = plot::Dash::dotted,
-          .width = 2.0});
-  b.ylabel("|\\rho_{SPH}/\\rho_0 - 1|  [%]  (colours as in a)")
-      .yscale(plot::Scale::log)
-      .ylim(1e-4, 10)
-      .legend(plot::Corner::upper_right);
-  figure.save_png(chapter.figure_path("lattice_bias.png"));
+  app::save_lattice_bias_figure(
+      chapter.figure_path("lattice_bias.png"),
+      "Density bias of a uniform lattice, \\rho_{SPH}/\\rho_0 - 1, against h / \\Delta x",
+      plot::Stamp{.scheme = "gather density with self term, m = \\rho_0 \\Delta x^D",
+                  .kernel = "M4",
+                  .run_time = chapter.seconds()},
+      scan.eta, lattices,
+      {1.2, 100 * scan.bias_1d_at_1_2,
+       "1D, \\eta = 1.2: +" + app::format("%.2f %%", 100 * scan.bias_1d_at_1_2)},
+      "2.2/(\\pi\\eta)^4 (1D bound)", bound);
 }
 
 /// \section ch02_calibrate Step 5: building an initial condition with the density we intend
@@ -616,10 +584,10 @@ void draw_lattice_figure(app::Chapter& chapter, const LatticeScan& scan) {
 ///
 /// The cure is to measure the kernel sum on the particle set we actually built and divide it out.
 /// `sph::calibrate_mass_to_density` keeps h and the neighbour list fixed and iterates
-/// \f$ m_i \leftarrow m_i\, \rho_{\rm target}(\mathbf x_i)/\rho_i \f$.  On a uniform lattice one sweep
-/// is exact -- it is \f$ m = \rho_0 / \sum_j W_{ij} \f$ -- and where two lattices meet at a density
-/// jump (the shock tubes) it converges geometrically with the pair-averaged sum (the tests check
-/// both).
+/// \f$ m_i \leftarrow m_i\, \rho_{\rm target}(\mathbf x_i)/\rho_i \f$.  On a uniform lattice one
+/// sweep is exact -- it is \f$ m = \rho_0 / \sum_j W_{ij} \f$ -- and where two lattices meet at a
+/// density jump (the shock tubes) it converges geometrically with the pair-averaged sum (the tests
+/// check both).
 ///
 /// On a glass the same iteration is a different matter.  Asking every particle of a disordered
 /// set for exactly \f$ \rho_0 \f$ means solving \f$ \sum_j W_{ij} m_j = \rho_0 \f$ for the masses:
@@ -629,19 +597,32 @@ void draw_lattice_figure(app::Chapter& chapter, const LatticeScan& scan) {
 /// `sph::calibrate_mean_density`: one factor for all masses, which removes the bias and leaves
 /// the scatter.  The step checks that the lattice is exact after one sweep (to
 /// \f$ 10^{-12} \f$) and that the mean calibration puts the glass's mean density at one.
+/// Why one factor is enough for the mean: with h and the neighbours fixed every density is
+/// linear in the masses, so multiplying all of them by \f$ \rho_0/\bar\rho \f$ moves the mean
+/// exactly to \f$ \rho_0 \f$ and leaves the relative scatter \f$ \sigma_\rho/\bar\rho \f$ as it
+/// was -- the printed \f$ 3.59\cdot 10^{-3} \f$ is the \f$ \gamma = 2 \f$ glass's own from Step 3.
 ///
 /// <b>What to look for.</b>  The lattice: error \f$ 1.3\cdot 10^{-4} \f$ before, round-off
 /// after one sweep.  The glass: the per-particle iteration stalls at \f$ 3\cdot 10^{-3} \f$
 /// after 30 sweeps while the masses spread by 4 % -- the deconvolution at work, trading a
 /// density error for a mass error ten times larger.  The mean-only correction: one factor of
 /// 1.0012, and the scatter unchanged.
+///
+/// The lattice is the cubic lattice of the unit box, \f$ 16^3 \f$ particles (\f$ 10^3 \f$ with
+/// `--quick`), with Watkins' h for the chapter's 60 neighbours -- so \f$ \eta = 1.214 \f$, as
+/// Step 1 predicted, and its bias is the 3D cubic curve of Step 4 at that \f$ \eta \f$, where
+/// the curve passes close to zero on its way from +0.08 % to \f$ -0.11\% \f$.  The printed
+/// \f$ m N / M \f$ is the calibrated mass as a fraction of the nominal one: one sweep divides
+/// the mass by the measured \f$ \rho/\rho_0 \f$.  For the glass the step prints how far the
+/// per-particle masses have moved apart, the relative scatter of the masses after the sweeps;
+/// a calibration that buys a density error with a larger mass error has not helped.
 
 void step5_calibration(app::Chapter& chapter, const Setup& s, const Settled& glass) {
   std::printf("Step 5: masses calibrated so that the SPH density is exactly rho_0 = 1\n");
   // The lattice: every particle alike, one sweep.
   const int side = s.quick ? 10 : 16;
   const std::array<int, 3> cells{side, side, side};
-  auto lattice = unit_box_particles<3>(
+  auto lattice = sph::setups::unit_box_particles<3>(
       sph::lattice<3>(sph::LatticeType::cubic, Vec<3>::Zero(), Vec<3>::Ones(), cells),
       s.neighbours);
   sph::NeighbourSearch<3> search;
@@ -670,10 +651,10 @@ void step5_calibration(app::Chapter& chapter, const Setup& s, const Settled& gla
       "(unchanged)\n\n",
       factor, calibrated.mean, calibrated.relative);
   chapter.check(on_lattice.final_error < 1e-12 && on_lattice.iterations == 1,
-                "lattice calibration: error " + format("%.2e", on_lattice.final_error) + " after " +
-                    std::to_string(on_lattice.iterations) + " sweeps");
+                "lattice calibration: error " + app::format("%.2e", on_lattice.final_error) +
+                    " after " + std::to_string(on_lattice.iterations) + " sweeps");
   chapter.check(std::abs(calibrated.mean - 1.0) < 1e-12,
-                "glass mean calibration: mean density " + format("%.15f", calibrated.mean));
+                "glass mean calibration: mean density " + app::format("%.15f", calibrated.mean));
 }
 
 /// \section ch02_rules Step 6: the smoothing-length rules
@@ -691,10 +672,10 @@ void step5_calibration(app::Chapter& chapter, const Setup& s, const Settled& gla
 ///  - **density**: Newton's method on eq A6 with the particle's own density,
 ///    \f$ \rho_i(h_i)\, V_D (2h_i)^D = N m_i \f$.  Written with the kernel's shape, the left side
 ///    is \f$ V_D 2^D \sum_j m_j \sigma_D\, w(r_{ij}/h_i) \f$ -- the \f$ h^{-D} \f$ of the kernel
-///    cancels the \f$ h^D \f$ of the volume -- a sum that grows with \f$ h_i \f$ as neighbours enter
-///    the kernel, with the derivative \f$ -\sum_j m_j \sigma_D\, w'(q_{ij})\, q_{ij}/h_i \f$ computed
-///    in the same loop.  Each Newton step is limited to 30 % of h, so a particle whose first
-///    guess is far off (the centre of a dense cluster) walks to its h in a few steps; the
+///    cancels the \f$ h^D \f$ of the volume -- a sum that grows with \f$ h_i \f$ as neighbours
+///    enter the kernel, with the derivative \f$ -\sum_j m_j \sigma_D\, w'(q_{ij})\, q_{ij}/h_i \f$
+///    computed in the same loop.  Each Newton step is limited to 30 % of h, so a particle whose
+///    first guess is far off (the centre of a dense cluster) walks to its h in a few steps; the
 ///    candidates are gathered once for a radius a little larger than \f$ 2h \f$ and gathered
 ///    again only when h grows past it.
 ///
@@ -702,12 +683,25 @@ void step5_calibration(app::Chapter& chapter, const Setup& s, const Settled& gla
 /// largest neighbour count, the spread of h, the largest violation of eq A6 and the time.  The
 /// step checks what each rule promises: the neighbour-number rule keeps every count within the
 /// tolerance, and the density rule satisfies eq A6 at every particle to \f$ 10^{-6} \f$.
+/// Why both sets?  The settled set is what a simulation starts from, and on it a good rule
+/// should change little.  The random set is the stress test: its densities differ by a quarter
+/// from particle to particle (Step 2), and only there do the rules show what they really
+/// promise.
 ///
 /// <b>What to look for.</b>  On the settled set the three rules hardly differ (h varies by
 /// 8 % at most).  On the random set they part ways: the fixed h gives counts from 35 to 86, the
 /// neighbour-number rule forces them into 54-66 by varying h by a factor 1.3, and the density
 /// rule satisfies eq A6 to round-off while its counts range from 17 to 101 and its h by a factor
 /// 2 -- eq A6 fixes the mass inside the kernel, not the number of particles.
+///
+/// The column "eq A6 error" is
+/// \f$ \max_i |\rho_i V_3 (2h_i)^3 / (N_{\rm kernel}\, m_i) - 1| \f$, with the density the pass
+/// has just computed (gather, self term, the particle's own h).  For the fixed h, chosen by eq
+/// A6 with \f$ \rho = 1 \f$, it is simply the largest density error \f$ |\rho_i - 1| \f$: on the
+/// settled set the same \f$ 1.28\cdot 10^{-2} \f$ that Step 5 calibrates from.  The
+/// neighbour-number rule's tolerance is \f$ \pm 10\% \f$ of the target rounded to a whole count,
+/// \f$ \pm 6 \f$ for 60.  Each rule's time is that of its search and one density pass, so the
+/// time column also shows what the two adaptive rules cost over the fixed one.
 
 struct RuleResult {
   std::string name;
@@ -723,12 +717,11 @@ RuleResult apply_rule(sph::Particles<3> p, const std::string& name,
   search.update(p, unit_box<3>(), rule);
   sph::compute_density(p, search.list(), sph::DensityForm::watkins());
   r.seconds = clock.seconds();
-  const auto [lo, hi] = std::minmax_element(p.neighbour_count.begin(), p.neighbour_count.end());
-  r.min_count = *lo;
-  r.max_count = *hi;
-  for (int c : p.neighbour_count) r.mean_count += c / static_cast<double>(p.size());
-  const auto [hlo, hhi] = std::minmax_element(p.smoothing_length.begin(), p.smoothing_length.end());
-  r.h_spread = *hhi / *hlo;
+  const app::NeighbourCounts counts = app::neighbour_counts(p);
+  r.min_count = counts.min;
+  r.max_count = counts.max;
+  r.mean_count = counts.mean;
+  r.h_spread = app::smoothing_length_spread(p);
   // How well eq A6 holds with the density the pass computed (gather, self term, own h).
   for (std::size_t i = 0; i < p.size(); ++i) {
     const double kernel_mass =
@@ -751,7 +744,7 @@ void step6_rules(app::Chapter& chapter, const Setup& s, const Settled& glass,
     const RuleResult results[] = {
         apply_rule(*set, "fixed h (eq A6 with rho = 1)", sph::SmoothingLengthRule::fixed(),
                    s.neighbours),
-        apply_rule(*set, "neighbour number +-" + format("%.0f", tolerance),
+        apply_rule(*set, "neighbour number +-" + app::format("%.0f", tolerance),
                    sph::SmoothingLengthRule::neighbour_number(s.neighbours, tolerance),
                    s.neighbours),
         apply_rule(*set, "density (eq A6 per particle)",
@@ -767,7 +760,7 @@ void step6_rules(app::Chapter& chapter, const Setup& s, const Settled& glass,
                   set_name + ": neighbour-number rule gave counts " +
                       std::to_string(count.min_count) + " to " + std::to_string(count.max_count));
     chapter.check(results[2].worst_a6 < 1e-6, set_name + ": density rule violates eq A6 by " +
-                                                  format("%.2e", results[2].worst_a6));
+                                                  app::format("%.2e", results[2].worst_a6));
   }
   std::printf("\n");
 }
@@ -786,12 +779,12 @@ void step6_rules(app::Chapter& chapter, const Setup& s, const Settled& glass,
 /// around it (cells half the search radius R wide, so \f$ 5^3 \f$ of them, a cube of side
 /// \f$ 2.5R \f$) and tests every particle in them.  With \f$ R = 1.1 \times 2h \f$ (a 10 % margin,
 /// so that the neighbour-number rule can move h without searching again) that is
-/// \f$ 2.5^3 \cdot 1.1^3 / \tfrac43\pi \approx 5 \f$ candidates per neighbour.  The density pass then evaluates one kernel per neighbour.  Both
-/// are proportional to \f$ N\, N_{\rm ngb} \f$, and for a uniform set nothing else enters.  The
-/// benchmark program (`bench`, 10^5 particles, 64 neighbours) measures the same pieces in
-/// isolation.  The runs go into an
-/// `sph::ErrorVsTime` study, which prints the table with the fitted order
-/// \f$ p \f$ (error \f$ \propto \Delta x^p \f$) and draws the log-log figure.
+/// \f$ 2.5^3 \cdot 1.1^3 / \tfrac43\pi \approx 5 \f$ candidates per neighbour.  The density
+/// pass then evaluates one kernel per neighbour.  Both are proportional to
+/// \f$ N\, N_{\rm ngb} \f$, and for a uniform set nothing else enters.  The benchmark program
+/// (`bench`, 10^5 particles, 64 neighbours) measures the same pieces in isolation.  The runs go
+/// into an `sph::ErrorVsTime` study, which prints the table with the fitted order \f$ p \f$
+/// (error \f$ \propto \Delta x^p \f$) and draws the log-log figure.
 ///
 /// <b>What to look for.</b>  The lattice rows: the same error at every N (order 0), because
 /// the error is the bias of Step 4, which depends on \f$ \eta \f$ alone.  The glass rows: an
@@ -800,80 +793,38 @@ void step6_rules(app::Chapter& chapter, const Setup& s, const Settled& glass,
 /// 1.8 with each doubling of the neighbour number (the search's cost per particle does not
 /// all scale with the kernel).
 
-/// The two error measures of a set whose intended density is one.
-std::vector<std::pair<std::string, double>> density_errors(const sph::Particles<3>& p) {
-  double square = 0, mean = 0;
-  for (double rho : p.density) {
-    square += (rho - 1.0) * (rho - 1.0) / static_cast<double>(p.size());
-    mean += rho / static_cast<double>(p.size());
-  }
-  return {{"rms error", std::sqrt(square)}, {"|mean error|", std::abs(mean - 1.0)}};
-}
-
-struct CostStudy {
-  sph::ErrorVsTime study{
-      "Density error of 3D lattices and settled glasses against the run time of the density step"};
-  double relax_seconds = 0;
-  long relaxed_particles = 0;
-};
-
-/// One record: the set's density error and the time of its density step (search + sum), the
-/// best of three runs (the machine may be shared).
-void record(CostStudy& cost, const std::string& method, sph::Particles<3>& p) {
-  double seconds = 1e300;
-  for (int k = 0; k < 3; ++k)
-    seconds = std::min(seconds, measure_density(p, sph::DensityForm::watkins()));
-  const int n = static_cast<int>(p.size());
-  cost.study.add({method, n, std::cbrt(1.0 / n), seconds, density_errors(p)});
-  std::printf("  %s: N = %d, %.4f s, rms error %.3e, |mean error| %.3e\n", method.c_str(), n,
-              seconds, cost.study.records().back().error("rms error"),
-              cost.study.records().back().error("|mean error|"));
-}
-
-/// The sweep runs on one thread, so that the times compare across N even on a shared machine
-/// (the smallest sets, below `sph::parallel_threshold`, run on one thread anyway).
-
-void run_cost_study(CostStudy& cost, const std::vector<int>& lattice_sides,
-                    const std::vector<int>& glass_sides) {
-  const int threads = omp_get_max_threads();
-  omp_set_num_threads(1);
-  for (double neighbours : {32.0, 64.0, 128.0}) {
-    const std::string label = format("%.0f", neighbours) + " neighbours";
-    for (int side : lattice_sides) {
-      const std::array<int, 3> cells{side, side, side};
-      auto p = unit_box_particles<3>(
-          sph::lattice<3>(sph::LatticeType::cubic, Vec<3>::Zero(), Vec<3>::Ones(), cells),
-          neighbours);
-      record(cost, "lattice, " + label, p);
-    }
-    for (int side : glass_sides) {
-      // The glass is built first, outside the timed density step.
-      const std::size_t n = static_cast<std::size_t>(side) * side * side;
-      auto p = unit_box_particles<3>(
-          sph::uniform_random<3>(Vec<3>::Zero(), Vec<3>::Ones(), n, 1000 + side), neighbours);
-      const app::Stopwatch relax_clock;
-      sph::relax_to_uniform_density(p, unit_box<3>());
-      cost.relax_seconds += relax_clock.seconds();
-      cost.relaxed_particles += static_cast<long>(n);
-      record(cost, "glass, " + label, p);
-    }
-  }
-  omp_set_num_threads(threads);
-}
+/// The sweep is `app::run_density_cost_sweep` (`lib/app/density/density_timing.hpp`).  It runs on
+/// one thread, so that the times compare across N even on a shared machine (the smallest sets,
+/// below `sph::parallel_threshold`, run on one thread anyway).  Each set's density step is run
+/// three times and the shortest time kept: other work on the machine can only slow a run down,
+/// never speed it up, so the minimum is the best estimate of the step's own cost, and the
+/// errors, which do not depend on the time, are those of the last pass.  A glass is relaxed
+/// before it is timed, with the relaxation's cost counted apart.  The lattices run to
+/// \f$ 32^3 \f$ particles, the glasses only to \f$ 16^3 \f$, because building a glass costs far
+/// more than measuring it (the last line of the output says how much).  With `--quick` the
+/// lattices have sides 6, 8 and 10 and the glasses 6 and 8: enough points for a slope, and
+/// a run of seconds.
+///
+/// Two slopes summarise each line of the table.  The order p is the least-squares slope of
+/// \f$ \ln \text{error} \f$ against \f$ \ln \Delta x \f$; the cost slope s that of
+/// \f$ \ln \text{error} \f$ against \f$ \ln t \f$, more negative when a method buys more accuracy
+/// per second.  A line that is flat in \f$ \Delta x \f$ has both near zero, whatever its times.
 
 /// The step checks the two findings the figure is about: a lattice's error does not change with
-/// N at all (to \f$ 10^{-9} \f$ relative), and every glass stays below 2 % RMS.  The figure is
+/// N at all (to \f$ 10^{-9} \f$ relative: at every N it is the same sum over the same shells,
+/// and only round-off differs), and every glass stays below 2 % RMS.  The figure is
 /// the shared error-against-time figure of `lib/app/error_figure.hpp`, with the y range widened
-/// so that the legend finds room under the lines.
+/// so that the legend finds room under the lines (`app::save_density_cost_figure`).
 
 void step7_cost(app::Chapter& chapter, const Setup& s) {
   std::printf("Step 7: density error against run time (3D, periodic unit box)\n");
-  CostStudy cost;
+  app::DensityCostStudy cost{sph::ErrorVsTime(
+      "Density error of 3D lattices and settled glasses against the run time of the density step")};
   const std::vector<int> lattice_sides =
       s.quick ? std::vector<int>{6, 8, 10} : std::vector<int>{8, 12, 16, 24, 32};
   const std::vector<int> glass_sides =
       s.quick ? std::vector<int>{6, 8} : std::vector<int>{8, 12, 16};
-  run_cost_study(cost, lattice_sides, glass_sides);
+  app::run_density_cost_sweep(cost, {32.0, 64.0, 128.0}, lattice_sides, glass_sides);
   std::printf("\n%s", cost.study.table().c_str());
   std::printf(
       "relaxing the glasses took %.1f s for %ld particles in all (not in the times above)\n",
@@ -883,23 +834,21 @@ void step7_cost(app::Chapter& chapter, const Setup& s) {
     const auto [lo, hi] = std::minmax_element(curve.error.begin(), curve.error.end());
     if (method.starts_with("lattice")) {
       chapter.check(*hi <= *lo * (1 + 1e-9), method + ": the lattice error changes with N (" +
-                                                 format("%.3e", *lo) + " to " +
-                                                 format("%.3e", *hi) + ")");
+                                                 app::format("%.3e", *lo) + " to " +
+                                                 app::format("%.3e", *hi) + ")");
     } else {
-      chapter.check(*hi < 0.02, method + ": glass rms error " + format("%.3e", *hi) + " above 2 %");
+      chapter.check(*hi < 0.02,
+                    method + ": glass rms error " + app::format("%.3e", *hi) + " above 2 %");
     }
   }
-  app::ErrorFigureOptions options;
-  options.stamp = plot::format_stamp(
-      {.scheme =
-           "gather density with self term, constant h (eq A6), search + density on one thread",
-       .kernel = "M4"});
-  options.title =
-      "Density error of 3D lattices and settled glasses against the time of the density step";
-  plot::Figure figure = app::error_figure(cost.study, options);
-  figure.panel(0).ylim(1e-4, 1e-2).legend(plot::Corner::lower_right);
-  figure.panel(1).ylim(1e-5, 1e-2).legend(plot::Corner::lower_right);
-  figure.save_png(chapter.figure_path("density_error_vs_time.png"));
+  app::save_density_cost_figure(
+      chapter.figure_path("density_error_vs_time.png"), cost.study,
+      "Density error of 3D lattices and settled glasses against the time of the density step",
+      plot::format_stamp(
+          {.scheme =
+               "gather density with self term, constant h (eq A6), search + density on one thread",
+           .kernel = "M4"}),
+      1e-4, 1e-5);
 }
 
 }  // namespace
@@ -920,6 +869,14 @@ void step7_cost(app::Chapter& chapter, const Setup& s) {
 /// lattices for the test suite -- and runs the seven steps.  Steps 3 to 6 reuse the sets of
 /// the earlier steps: the random set of Step 2 is the start of the relaxations in Step 3, whose
 /// \f$ \gamma = 2 \f$ glass is calibrated in Step 5 and measured again in Step 6.
+///
+/// The neighbour number has a lower limit that is not arbitrary.  With h from the density, a
+/// particle whose kernel held no neighbour at all would have only its own term,
+/// \f$ \rho = m W(0, h) = m/(\pi h^3) \f$, and eq A6,
+/// \f$ h^3 = 3 N_{\rm kernel} m / (32\pi\rho) \f$, would then ask for
+/// \f$ h^3 = \frac{3 N_{\rm kernel}}{32} h^3 \f$.  Below \f$ N_{\rm kernel} = 32/3 \f$ the right
+/// side is always the smaller: a particle that has lost its neighbours asks for a still smaller h,
+/// and the iteration drives h to zero.  The option therefore starts at 11.
 
 int main(int argc, char** argv) {
   return app::run_main([&] {
@@ -930,8 +887,6 @@ int main(int argc, char** argv) {
         .parameter("--particles", s.particles, "particles of the static tests (Watkins: 5000)",
                    1000)
         .check(app::count_between(200, 100000, [](double n) { return app::particle_bytes(3, n); }));
-    // (h from the density has no fixed point below N = 32/3: as h shrinks, the density tends to
-    // a particle's own term m / (pi h^3), and h^3 = 3 N m / (32 pi rho) shrinks by 3N/32)
     chapter
         .parameter("--neighbours", s.neighbours,
                    "expected neighbours within 2h, eq A5 (Watkins: 60; below 32/3, h from the "

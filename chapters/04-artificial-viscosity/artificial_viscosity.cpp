@@ -123,7 +123,9 @@
 /// directory (`--output`) on the way.
 
 #include "app/chapter.hpp"
+#include "app/curve_reading.hpp"
 #include "app/error_figure.hpp"
+#include "app/artificial_viscosity/lattice_sums_figure.hpp"
 #include "app/shock_tube_figure.hpp"
 #include "app/shock_tube_run.hpp"
 #include "app/text.hpp"
@@ -341,7 +343,38 @@ void declare_parameters(app::Chapter& chapter, Parameters& par) {
                  "time at which the tubes are compared (earlier than 0.05, Step 3's plateau "
                  "holds no particle)")
       .check(app::between(0.05, 0.25));
-  // (the tubes' particles: 1.125 n in 1D, 1.125 n^2 / 8 in 2D, 1.125 n^3 / 64 in 3D)
+}
+
+/// \subsection ch04_interiors The resolutions, and a tube that has an interior
+///
+/// The resolutions and the neighbour numbers are options as well, and together they decide
+/// whether a tube can be built at all.  `--sod-1d`, `--sod-2d` and `--sod-3d` count particles
+/// per unit length on the dense side, n; with the thin side eight times sparser and a
+/// cross-section 0.125 wide, a tube holds \f$ 1.125\,n \f$ particles in 1D,
+/// \f$ 1.125\,n^2/8 \f$ in 2D and \f$ 1.125\,n^3/64 \f$ in 3D, and the upper ends of the
+/// ranges keep that, and the run time, within reach.  The lower end of `--neighbours-1d`, 2.7, is
+/// chapter 3's: below \f$ N = 8/3 \f$ the rule \f$ h = Nm/(4\rho) \f$ has no fixed point and h
+/// collapses to zero.
+///
+/// The upper ends of the neighbour numbers come from the set-up.  It calibrates each side's
+/// masses on the side's *interior*, the particles at least 1.5 kernel supports (3h) from both
+/// of its ends, where the density sum sees the side's own lattice and nothing else (chapter 2).
+/// The thinner side is the one at risk.  In 1D, with n particles per unit length on the left, a
+/// side of density \f$ \rho \f$ has \f$ h = N\rho_L/(4n\rho) \f$, and a side of unit length has
+/// an interior only if \f$ 6h < 1 \f$, that is for \f$ n > 1.5\,N\rho_L/\rho_{\rm thin} \f$.
+/// Its lattice, a whole number of particles, and its largest h ask for a little more, so we
+/// require \f$ n \ge 2N\rho_L/\rho_{\rm thin} \f$: 16 N for Sod.  The coarsest 1D tubes are
+/// Step 1's, at a quarter of `--sod-1d`, and Step 5's, at 100 (`--quick`) or 200; the coarsest
+/// of all, 100, allows N up to 6.25 with Sod's states, hence the range's top, 6.  In 3D, N
+/// neighbours within 2h give \f$ h = (3Nm/(32\pi\rho))^{1/3} \f$ with \f$ m = \rho_L/n^3 \f$;
+/// the same argument gives an interior for \f$ n > 6\,(3N\rho_L/(32\pi\rho_{\rm thin}))^{1/3}
+/// \f$, and we require 8 in place of 6, \f$ n \ge 19.4 \f$ for Sod at N = 60.  The coarsest 3D
+/// tubes are `--sod-3d`'s and Step 5's, at 24, which allows N up to 113, hence the range's
+/// top, 110.  With other states the thin side may be thinner still, so the program checks both
+/// conditions for the states it is given, before it runs anything, and names the option to
+/// change.
+
+void declare_resolutions(app::Chapter& chapter, Parameters& par) {
   chapter.parameter("--sod-1d", par.sod_1d, "1D: particles per unit length on the dense side", 800)
       .check(app::count_between(256, 12800, [](double n) { return app::particle_bytes(1, n); }));
   chapter.parameter("--sod-2d", par.sod_2d, "2D: particles per unit length on the dense side", 64)
@@ -350,19 +383,11 @@ void declare_parameters(app::Chapter& chapter, Parameters& par) {
   chapter.parameter("--sod-3d", par.sod_3d, "3D: particles per unit length on the dense side", 32)
       .check(app::count_between(
           20, 160, [](double n) { return app::particle_bytes(3, 1.125 * n * n * n / 64); }));
-  // Below N = 8/3 the rule has no fixed point: as h shrinks, the density tends to a particle's
-  // own term 2m / (3h), and h = N m / (4 rho) = 3N h / 8 shrinks further, to zero.
   chapter
       .parameter("--neighbours-1d", par.neighbours_1d,
                  "1D: N in h = N m / (4 rho) (below 8/3, h collapses to zero; above 6, Step 5's "
                  "coarsest Sod tube has no interior)")
       .check(app::between(2.7, 6.0));
-  // A tube's masses are calibrated on the interior of each side, 1.5 kernel supports from both
-  // ends.  At n particles per unit length on the left, h = N rho_left / (4 n rho) on a side of
-  // density rho, so the thinner side has an interior only for n > 1.5 N rho_left / rho_thin;
-  // its lattice, a whole number of particles, and its largest h ask for more: we require
-  // n >= 2 N rho_left / rho_thin (16 N for Sod).  The coarsest 1D tubes are Step 1's, at a
-  // quarter of --sod-1d, and Step 5's, at 100 (--quick) or 200.
   const auto coarsest_1d = [&chapter, &par] {
     return std::min(par.sod_1d / 4, chapter.quick() ? 100 : 200);
   };
@@ -384,10 +409,6 @@ void declare_parameters(app::Chapter& chapter, Parameters& par) {
                  "3D: neighbour number for Sod (above 110, Step 5's coarsest Sod tube has no "
                  "interior)")
       .check(app::between(8.0, 110.0));
-  // The same in 3D, where N neighbours within 2h give h = (3 N m / (32 pi rho))^(1/3): the
-  // thinner side has an interior for n > 6 (3 N rho_left / (32 pi rho_thin))^(1/3), and we
-  // require 8 (n >= 19.4 for Sod at N = 60).  The coarsest 3D tubes are --sod-3d's and Step 5's,
-  // at 24.
   const auto least_3d = [&par] {
     const sph::ShockTubeSetup& tube = par.tube;
     return 8 * std::cbrt(3 * par.neighbours_3d * tube.left.density /
@@ -401,6 +422,11 @@ void declare_parameters(app::Chapter& chapter, Parameters& par) {
                            "interior; the coarsest has " + app::show(std::min(par.sod_3d, 24));
                   });
 }
+
+/// `set_resolution` completes the parameters once they are read: it records whether the run is
+/// `--quick`, which Steps 2, 4, 5 and 6 and the checks consult for their coarser series and
+/// looser thresholds, and turns the `--signal-velocity` switch into the time-step rule of the
+/// levers.
 
 void set_resolution(Parameters& par, bool quick) {
   par.quick = quick;
@@ -607,14 +633,15 @@ LatticeSums lattice_sums_1d(double eta) {
 ///
 /// In code, \f$ \eta \f$ enters the run through the smoothing-length rule alone: h from the
 /// density with \f$ N = 4\eta \f$ neighbours, so \f$ h = \eta\,\Delta x \f$ on the initial
-/// lattice.  The figure's log scale cannot show an exact zero, so departures below
-/// \f$ 10^{-7} \f$ are drawn at \f$ 10^{-7} \f$.
+/// lattice.  The step collects, for each \f$ \eta \f$, the two sums and the error into an
+/// app::LatticeSumsCurves, which both the figure and the checks read: the figure is drawn by
+/// app::save_lattice_sums_figure (lib/app/artificial_viscosity/lattice_sums_figure.hpp), whose log
+/// scale cannot show an exact zero, so departures below \f$ 10^{-7} \f$ are drawn at \f$ 10^{-7}
+/// \f$; the checks compare the error at \f$ \eta = 1 \f$ with the one nearest 1.2.  The tube is
+/// built anew at each \f$ \eta \f$, the same tube every time, because the masses are calibrated for
+/// the smoothing length the rule will give, and that changes with \f$ \eta \f$.
 
-struct EtaScan {
-  std::vector<double> eta, l1_rho;
-};
-
-EtaScan step2_lattice_sums(const app::Chapter& chapter, const Parameters& par) {
+app::LatticeSumsCurves step2_lattice_sums(const app::Chapter& chapter, const Parameters& par) {
   const int resolution = 400;
   // (the window |x| <= 0.5 holds half a unit of each side, the thin side 8 times sparser)
   const int in_window = resolution / 2 + resolution / 16;
@@ -623,8 +650,7 @@ EtaScan step2_lattice_sums(const app::Chapter& chapter, const Parameters& par) {
   std::printf("  h/dx   density sum  gradient sum   L1(rho)    L1(v)\n");
   sph::ShockTubeSetup sod = par.tube;
   sod.left_spacing = 1.0 / resolution;
-  EtaScan scan;
-  std::vector<double> gradient_error, density_error;
+  app::LatticeSumsCurves curves{.error_label = "Sod 1D, \\alpha = 1, \\beta = 2"};
   for (double eta = 1.0; eta <= 2.0001; eta += par.quick ? 0.25 : 0.1) {
     const LatticeSums sums = lattice_sums_1d(eta);
     const app::TubeRun<1> run = run_tube<1>(sod, sph::SmoothingLengthRule::from_density(4.0 * eta),
@@ -632,45 +658,17 @@ EtaScan step2_lattice_sums(const app::Chapter& chapter, const Parameters& par) {
     const auto errors = sph::shock_tube_errors(run.particles, run.exact, par.t_end);
     std::printf("  %4.2f   %10.5f   %10.5f    %.3e  %.3e\n", eta, sums.density, sums.gradient,
                 errors[0].L1, errors[1].L1);
-    scan.eta.push_back(eta);
-    scan.l1_rho.push_back(errors[0].L1);
-    gradient_error.push_back(std::max(std::abs(sums.gradient - 1.0), 1e-7));
-    density_error.push_back(std::max(std::abs(sums.density - 1.0), 1e-7));
+    curves.eta.push_back(eta);
+    curves.density_sum.push_back(sums.density);
+    curves.gradient_sum.push_back(sums.gradient);
+    curves.error.push_back(errors[0].L1);
   }
-
-  plot::Figure fig(1, 2, {.width = 1500, .height = 600});
-  fig.title("Why h = \\Delta x in 1D: lattice sums of the M4 kernel and the Sod error");
-  fig.stamp(plot::Stamp{par.viscosity().describe(), "M4", -1, -1, -1,
-                        format("1D Sod, t = %g, N(window) = %d", par.t_end, in_window)});
-  fig.panel(0)
-      .xlabel("h/\\Delta x")
-      .ylabel("|lattice sum - 1|")
-      .yscale(plot::Scale::log)
-      .ylim(3e-8, 1.0)  // (room above the sums for the legend: they touch every lower corner)
-      .line(scan.eta, gradient_error,
-            {.label = "gradient sum S",
-             .color = plot::blue,
-             .marker = plot::Marker::circle,
-             .marker_size = 7})
-      .line(scan.eta, density_error,
-            {.label = "density sum",
-             .color = plot::orange,
-             .style = plot::Dash::dashed,
-             .marker = plot::Marker::square,
-             .marker_size = 7})
-      .legend(plot::Corner::upper_right);
-  fig.panel(1)
-      .xlabel("h/\\Delta x")
-      .ylabel("L_1(\\rho)")
-      .yscale(plot::Scale::log)
-      .line(scan.eta, scan.l1_rho,
-            {.label = "Sod 1D, \\alpha = 1, \\beta = 2",
-             .color = plot::black,
-             .marker = plot::Marker::circle,
-             .marker_size = 7})
-      .legend(plot::Corner::lower_right);
-  fig.save_png(chapter.figure_path("lattice_sums_1d.png").string());
-  return scan;
+  app::save_lattice_sums_figure(
+      curves, "Why h = \\Delta x in 1D: lattice sums of the M4 kernel and the Sod error",
+      plot::Stamp{par.viscosity().describe(), "M4", -1, -1, -1,
+                  format("1D Sod, t = %g, N(window) = %d", par.t_end, in_window)},
+      chapter.figure_path("lattice_sums_1d.png").string());
+  return curves;
 }
 
 /// \section ch04_multid Step 3: Sod's tube in 2D and 3D
@@ -758,7 +756,8 @@ double plateau_pressure(const app::TubeRun<D>& run, double t) {
 /// cent at full resolution (the `--quick` tube, only a few particles across, is off by more).
 /// The 2D and 3D errors are several times the 1D error with many more particles: the glass
 /// carries a density noise of its own, which the shock amplifies.  The cost per particle and
-/// step is about three times higher in 3D than in 2D, three times the neighbours.
+/// step is about four times higher in 3D than in 2D (2.529 against 0.653 microseconds in the
+/// recorded run), for three times the neighbours.
 ///
 /// The smoothing length follows chapter 2's neighbour-number rule with a tolerance: h is
 /// changed only when a particle's count leaves \f$ N \pm 1 \f$ in 2D or \f$ N \pm 2 \f$ in 3D,
@@ -910,6 +909,14 @@ double velocity_scatter(const app::TubeRun<D>& run, double t, double lo, double 
 /// the shocked region, near 10 % over the disturbed region, where the smeared shock front and
 /// the rarefaction's head contribute.  Both are below the papers' 15 %, and the second shows
 /// that a number like "15 %" says as much about where it was measured as about the viscosity.
+///
+/// In code, the tube is the library's sph::ShockTubeSetup::monaghan_gingold(), settled to
+/// glasses like the tubes of Step 3 and run with the neighbour-number rule at a tolerance of
+/// zero -- exactly 50 neighbours, as Watkins et al. ask -- and without the reader's levers, so
+/// that the baseline stays the papers' scheme whatever the options.  The margins of both
+/// windows use \f$ \bar h \f$, the plain mean of h over all particles; each scatter is then one
+/// call of `velocity_scatter`, and the step returns the shocked region's, which the checks
+/// compare with the papers' 15 % and `summary.txt` records.
 
 double step4_monaghan_gingold_tube(const app::Chapter& chapter, const Parameters& par) {
   sph::ShockTubeSetup mg = sph::ShockTubeSetup::monaghan_gingold();
@@ -1086,9 +1093,9 @@ double step5_error_against_run_time(const app::Chapter& chapter, const Parameter
 /// \f$ 0.3\,h/(c_i + c_j) \f$ needs to cross the dense gas at rest (a lower bound, not a run),
 /// and they are consistent with \f$ 0.3\,h/\tfrac12(c_i + c_j) \f$, which needs at least 631 --
 /// the form in which several codes write the signal velocity, with the pair's mean sound speed.
-/// Its step at C = 0.3 is therefore ours at C = 0.6, and that is the factor we race with.  (It is still a stable explicit step: the
-/// sound crosses 0.3 of a smoothing length per step, and the test suite checks that the errors
-/// do not grow.)
+/// Its step at C = 0.3 is therefore ours at C = 0.6, and that is the factor we race with.  (It
+/// is still a stable explicit step: the sound crosses 0.3 of a smoothing length per step, and
+/// the test suite checks that the errors do not grow.)
 ///
 /// Which scene uses which rule?  Every step above keeps eq 7: Steps 1-5 reproduce and extend
 /// what the papers did with it (Selhammar and Watkins et al. integrate with eq 7 or a fixed
@@ -1136,48 +1143,14 @@ double step5_error_against_run_time(const app::Chapter& chapter, const Parameter
 /// on one thread of a quiet machine, where wall and CPU time agree.  This program runs on a
 /// machine that may be shared, and its wall time then counts the other processes' turns too;
 /// so the step prints both and races with the CPU time of the run (`std::clock`, one thread
-/// for the whole step).  The figure `fair_race.png` draws \f$ L_1(\rho) \f$ and
-/// \f$ L_1(v) \f$ against that time for both codes, the other's four points marked as quoted
-/// measurements.  Then the step interpolates both codes' curves log-log -- ours between
-/// neighbouring runs, the other's along the power law through its two points -- and prints at
-/// equal times from 0.1 to 2 s the ratio of our error to theirs; a star marks a time outside
-/// the span of one code's runs, where the number is an extrapolation.
+/// for the whole race).  Then we compare the two codes' errors at equal times, and draw both
+/// codes' curves against that time in `fair_race.png`.
 
-/// What to look for.  (a) At the same C = 0.3 the signal velocity saves only what the rest
-/// state allows: 1266 steps against eq 7's 1393 at 450 particles.  At the other code's step,
-/// C = 0.6, it takes 634 (the other code 693), and the errors grow by under 2 %
-/// (\f$ L_1(\rho) \f$ 1.255e-3 against 1.234e-3).  Boosted by 3, eq 7 takes 2995 steps, the
-/// signal velocity still 634, and both give the errors of the tube at rest, measured in the
-/// moving frame.  (b) The walled tube holds 466 particles instead of 900 (1816 instead of
-/// 3600), takes the same steps, and its errors in the window agree with the periodic tube's to
-/// \f$ 3\cdot 10^{-10} \f$ and \f$ 5\cdot 10^{-12} \f$ of themselves: nothing reaches either
-/// end by \f$ t = 0.2 \f$.  (With `--quick` the coarser tube differs by 15 %: at 113 particles
-/// the smeared waves of the periodic tube's far interface already touch the window's edge,
-/// and the walled tube is the more accurate of the two.)  (c) At \f$ h = \Delta x \f$ our
-/// run of 450 particles takes 634 steps and 0.10 s of CPU for \f$ L_1(\rho) = 1.26\cdot
-/// 10^{-3} \f$ and \f$ L_1(v) = 3.09\cdot 10^{-3} \f$, where the other code takes 693 steps and
-/// 0.18 s for \f$ 2.17\cdot 10^{-3} \f$ and \f$ 4.2\cdot 10^{-3} \f$; at 1800 particles, 1.30 s
-/// for \f$ 3.1\cdot 10^{-4} \f$ and \f$ 7.8\cdot 10^{-4} \f$ against 2.12 s for
-/// \f$ 5.4\cdot 10^{-4} \f$ and \f$ 1.1\cdot 10^{-3} \f$.  At equal time our errors are 0.41
-/// to 0.45 of the other code's in \f$ \rho \f$ and 0.54 to 0.60 in v, over the whole range from
-/// 0.1 to 2 s.  At \f$ h = 1.2\Delta x \f$ with the plain pressure term we lose: the floor of
-/// Step 2 holds \f$ L_1(v) \f$ near \f$ 6.4\cdot 10^{-3} \f$ however fine the tube (fitted
-/// order 0.19), 1.3 to 5.5 times the other code's at equal time, and \f$ L_1(\rho) \f$ falls
-/// behind from about 0.6 s.  The grad-h correction removes the floor: the orders become 0.99
-/// and 1.00, the 1800-particle run gives \f$ 5.9\cdot 10^{-4} \f$ and \f$ 1.19\cdot 10^{-3} \f$
-/// (the other code \f$ 1.59\cdot 10^{-3} \f$ and \f$ 1.2\cdot 10^{-3} \f$), and at equal time our
-/// errors are 0.28 to 0.56 of the other's in \f$ \rho \f$ and 0.65 to 0.76 in v.  So the goal --
-/// lower errors at equal time at both \f$ h/\Delta x \f$ -- is reached with the three levers,
-/// at \f$ h = 1.2\Delta x \f$ only with the third.  At \f$ h = \Delta x \f$ the correction does
-/// not help: \f$ \Omega = 1 \f$ on the lattice, and where h varies, in the shock and at the
-/// contact, our approximation of grad-h raises \f$ L_1(\rho) \f$ by a fifth (1.51e-3 against
-/// 1.26e-3 at 450 particles) for a third pass over the neighbours.  Two cautions.  Our times
-/// are CPU times and theirs wall times of a whole process.  For our one-threaded runs on an idle
-/// machine the two are the same (the table prints both; on a busy one the wall times grow,
-/// the CPU times do not), and at the four points where both codes were measured the comparison
-/// at \f$ h = \Delta x \f$, and with grad-h at 1.2, holds in wall time too (at 1800 particles
-/// and 1.2, in v: 1.19e-3 in 1.01 s against 1.2e-3 in 1.93 s).  And the other code's curve is a power law through two
-/// points, so at 0.1 s and 2 s it is extrapolated.
+/// The step runs in three parts, (a) to (c), each a function below, then compares the two codes
+/// at equal times and draws the figure.  It runs only on Sod's tube at \f$ t = 0.2 \f$, the one
+/// tube the other code was measured on; with other states or another `--t-end` it says so and
+/// runs nothing.  The other code's numbers are the table above, kept in the program as they
+/// were measured:
 
 /// One quoted measurement of the other code.
 struct Quoted {
@@ -1190,54 +1163,57 @@ constexpr Quoted other_code[] = {{1.0, 450, 693, 0.18, 2.17e-3, 4.2e-3},
                                  {1.0, 1800, 2622, 2.12, 5.4e-4, 1.1e-3},
                                  {1.2, 450, 571, 0.17, 3.10e-3, 4.8e-3},
                                  {1.2, 1800, 2185, 1.93, 1.59e-3, 1.2e-3}};
+constexpr double race_etas[2] = {1.0, 1.2};  // the two h/dx of the quoted runs
 
-/// The error of a curve of (seconds, error) points at the time t, interpolated log-log between
-/// the neighbouring points in time (or extrapolated along the end segment, which `outside`
-/// reports).
-double loglog_at(std::vector<std::pair<double, double>> points, double t, bool& outside) {
-  std::sort(points.begin(), points.end());
-  outside = t < points.front().first || t > points.back().first;
-  std::size_t k = 1;
-  while (k + 1 < points.size() && points[k].first < t) ++k;
-  const auto& [t0, e0] = points[k - 1];
-  const auto& [t1, e1] = points[k];
-  const double f = std::log(t / t0) / std::log(t1 / t0);
-  return std::exp(std::log(e0) + f * std::log(e1 / e0));
-}
-
+/// What the checks need of the race: the step counts of (a) and the change of (b).
 struct Race {
   long steps_eq7 = 0, steps_signal = 0;                       // Sod, 450 particles, same C = 0.3
   long boosted_eq7 = 0, boosted_signal = 0, rest_signal = 0;  // v = 3, C = 0.6 for the signal
   double walls_change = 0;  // relative change of L1(rho) or L1(v), period to walls, finer tube
-  // at equal wall time: for each eta, how many of the compared times we are ahead, of how many
-  int ahead[2][2][2] = {};  // [eta][plain, grad-h][rho, v]
-  int compared = 0;
 };
 
-Race step6_fair_race(const app::Chapter& chapter, const Parameters& par) {
-  using TimestepRule = sph::Settings::TimestepRule;
-  const double t = par.t_end;
-  Race race;
-  std::printf("\nStep 6: a fair race with a mature code (1D Sod, t = %g)\n", t);
-  if (!par.is_sod()) {
-    std::printf("  (the other code was measured on Sod's tube at t = 0.2 only: not run)\n");
-    return race;
-  }
+/// Every run of the step is `race_tube`: a 1D tube at \f$ h = \eta\,\Delta x \f$ (h from the
+/// density with \f$ N = 4\eta \f$, as in Step 2) with the levers that the part asks for.  The
+/// reader's own levers (`--walls`, `--signal-velocity`, ...) play no part here: each row of the
+/// step says what it ran with.
 
-  // (a) The two time-step rules, on the periodic tube at 450 particles, and boosted.
+app::TubeRun<1> race_tube(const Parameters& par, const sph::ShockTubeSetup& setup, double eta,
+                          const Levers& how, const std::string& label) {
+  return run_tube<1>(setup, sph::SmoothingLengthRule::from_density(4.0 * eta), par.viscosity(),
+                     par.t_end, label, how);
+}
+
+/// \subsection ch04_fair_steps (a) The time step
+///
+/// Five runs of the periodic tube with 450 particles in the window: eq 7 and the signal
+/// velocity at the same C = 0.3, the signal velocity at the other code's C = 0.6, and, with
+/// both gases boosted by \f$ v = 3 \f$, eq 7 at C = 0.3 and the signal velocity at 0.6.  Why
+/// 3?  It is two and a half times the sound speed of the dense gas,
+/// \f$ c_L = \sqrt{\gamma P_L/\rho_L} = 1.18 \f$, so that in eq 7 the particle's own speed
+/// outweighs everything else.  As long as the step is set by the dense gas ahead of the
+/// rarefaction, eq 7's signal speed there is \f$ c + 1.2\,\alpha c = 2.2\,c = 2.60 \f$ at rest
+/// and \f$ 3 + 2.60 = 5.60 \f$ boosted: the boosted tube must take \f$ 5.60/2.60 = 2.15 \f$
+/// times the steps, at any resolution, while the signal velocity, which sees only relative
+/// motion, must take the same number.  A boosted tube is measured in the frame that moves with
+/// it (app::run_shock_tube), so its errors compare directly with those of the tube at rest.
+/// Each row prints the rule, the boost, the steps, the wall time and the errors; the step
+/// counts go to the checks.
+///
+/// What to look for.  At the same C = 0.3 the signal velocity saves only what the rest state
+/// allows: 1266 steps against eq 7's 1393.  At the other code's step, C = 0.6, it takes 634
+/// (the other code 693), and the errors grow by under 2 % (\f$ L_1(\rho) \f$ 1.255e-03 against
+/// 1.234e-03).  Boosted by 3, eq 7 takes 2995 steps, 2.15 times its 1393 at rest as predicted;
+/// the signal velocity still takes 634; and both give the errors of the tube at rest.
+
+void race_time_steps(const Parameters& par, Race& race) {
+  using TimestepRule = sph::Settings::TimestepRule;
   sph::ShockTubeSetup sod = par.tube;
   sod.left_spacing = 4.0 / par.sod_1d;
   std::printf("  (a) the time step: periodic tube, N(window) = %d\n", par.sod_1d * 9 / 64);
   std::printf("      rule                      boost  steps  wall [s]  L1(rho)    L1(v)\n");
-  // One 1D run at h = eta dx with the given levers (the user's own levers play no part here).
-  const auto race_tube = [&](const sph::ShockTubeSetup& setup, double eta, const Levers& how,
-                             const std::string& label) {
-    return run_tube<1>(setup, sph::SmoothingLengthRule::from_density(4.0 * eta), par.viscosity(), t,
-                       label, how);
-  };
-  const auto rule_row = [&](const char* name, const sph::ShockTubeSetup& setup, Levers how) {
-    const app::TubeRun<1> run = race_tube(setup, 1.0, how, name);
-    const auto e = sph::shock_tube_errors(run.particles, run.exact, t);
+  const auto rule_row = [&par](const char* name, const sph::ShockTubeSetup& setup, Levers how) {
+    const app::TubeRun<1> run = race_tube(par, setup, 1.0, how, name);
+    const auto e = sph::shock_tube_errors(run.particles, run.exact, par.t_end);
     std::printf("      %-25s  %4g  %5ld  %8.3f  %.3e  %.3e\n", name, setup.left.velocity, run.steps,
                 run.seconds, e[0].L1, e[1].L1);
     return run.steps;
@@ -1253,32 +1229,87 @@ Race step6_fair_race(const app::Chapter& chapter, const Parameters& par) {
   race.boosted_eq7 = rule_row("eq 7, C = 0.3", boosted, {});
   race.boosted_signal = rule_row("signal velocity, C = 0.6", boosted,
                                  {.timestep = TimestepRule::signal_velocity, .courant = 0.6});
+}
 
-  // (b) Walls instead of the period: the same answer in the window with half the particles.
+/// \subsection ch04_fair_ends (b) Walls instead of the period
+///
+/// Step 1's two resolutions, each run twice with the signal-velocity step at C = 0.6: periodic,
+/// and closed by walls at \f$ x = \pm 0.5 \f$.  For each resolution the part prints both rows
+/// and the largest relative change of \f$ L_1(\rho) \f$ and \f$ L_1(v) \f$ from the periodic
+/// tube to the walled one, and it returns the finer tube's change for the checks.  Why the
+/// finer?  Because at a coarse resolution the periodic tube is not the reference it should be:
+/// the waves of its far interface, smeared over a few of its large smoothing lengths, reach
+/// the window, as the `--quick` run below shows.
+///
+/// What to look for.  The walled tube holds 466 particles instead of 900 (1816 instead of
+/// 3600), takes the same steps, and its errors in the window agree with the periodic tube's to
+/// 2.6e-10 and 4.9e-12 of themselves: nothing reaches either end by \f$ t = 0.2 \f$.  It takes
+/// about half the wall time, as it should with half the particles.  (With `--quick` the coarser
+/// tube differs by 15 %: at 113 particles the smeared waves of the periodic tube's far interface
+/// already touch the window's edge, and the walled tube is the more accurate of the two.)
+
+double race_tube_ends(const Parameters& par) {
   std::printf("  (b) the tube: signal velocity, C = 0.6\n");
   std::printf("      ends      N(window) N(tube)  steps  wall [s]  L1(rho)    L1(v)\n");
-  const Levers signal{.timestep = TimestepRule::signal_velocity, .courant = 0.6};
+  sph::ShockTubeSetup sod = par.tube;
+  double change = 0;
   for (int resolution : {par.sod_1d / 4, par.sod_1d}) {
     sod.left_spacing = 1.0 / resolution;
     double l1[2][2];
     for (int walled = 0; walled < 2; ++walled) {
-      Levers how = signal;
-      how.walls = walled;
-      const app::TubeRun<1> run = race_tube(sod, 1.0, how, "walls or period");
-      const auto e = sph::shock_tube_errors(run.particles, run.exact, t);
+      const Levers how{.timestep = sph::Settings::TimestepRule::signal_velocity,
+                       .courant = 0.6,
+                       .walls = walled == 1};
+      const app::TubeRun<1> run = race_tube(par, sod, 1.0, how, "walls or period");
+      const auto e = sph::shock_tube_errors(run.particles, run.exact, par.t_end);
       l1[walled][0] = e[0].L1;
       l1[walled][1] = e[1].L1;
       std::printf("      %-8s  %9zu %7zu  %5ld  %8.3f  %.3e  %.3e\n", walled ? "walls" : "periodic",
                   e[0].count, run.particles.size(), run.steps, run.seconds, e[0].L1, e[1].L1);
     }
-    double change = 0;
+    change = 0;  // (each resolution its own; the finer tube's is returned)
     for (int q = 0; q < 2; ++q) change = std::max(change, std::abs(l1[1][q] / l1[0][q] - 1));
     std::printf("      largest relative change of L1(rho) or L1(v), walls against period: %.1e\n",
                 change);
-    race.walls_change = change;  // (the finer tube's is kept)
   }
+  return change;
+}
 
-  // (c) The race: error against the wall time of the whole run, one thread.
+/// \subsection ch04_fair_race (c) The race
+///
+/// With all levers on -- walls, the signal-velocity step at C = 0.6 -- the part runs the tube at
+/// \f$ 400 \cdot 2^{k/2} \f$ particles per unit length on the dense side, k = 0 to 8 (every second
+/// k with `--quick`), at both \f$ h/\Delta x \f$ of the quoted runs, first with the plain
+/// pressure term and then with the grad-h correction: 36 runs, on one thread (OpenMP's thread
+/// count is set to one for this part and restored after it).  Each run prints a row with both
+/// of its times, wall and CPU; beneath a row whose window holds the particles of a quoted run
+/// (to within two) the part prints the other code's numbers.  Each run also goes into two
+/// records: the study that the figure draws, against its CPU time, and the (time, error) points
+/// of its variant, `RaceRuns::points`, that the comparison at equal time reads.
+///
+/// What to look for.  At \f$ h = \Delta x \f$ our run of 450 particles takes 634 steps and
+/// 0.076 s of CPU for \f$ L_1(\rho) = 1.255\cdot 10^{-3} \f$ and
+/// \f$ L_1(v) = 3.091\cdot 10^{-3} \f$, where the other code takes 693 steps and 0.18 s for
+/// \f$ 2.17\cdot 10^{-3} \f$ and \f$ 4.2\cdot 10^{-3} \f$; at 1800 particles, 1.043 s for
+/// \f$ 3.107\cdot 10^{-4} \f$ and \f$ 7.844\cdot 10^{-4} \f$ against 2.12 s for
+/// \f$ 5.4\cdot 10^{-4} \f$ and \f$ 1.1\cdot 10^{-3} \f$.  At \f$ h = 1.2\Delta x \f$ with the
+/// plain pressure term the floor of Step 2 holds \f$ L_1(v) \f$ near \f$ 6.4\cdot 10^{-3} \f$
+/// however fine the tube (fitted order 0.19 in the figure).  The grad-h correction removes the
+/// floor: the orders become 0.99 and 1.00, and the 1800-particle run gives
+/// \f$ 5.867\cdot 10^{-4} \f$ and \f$ 1.189\cdot 10^{-3} \f$ (the other code
+/// \f$ 1.59\cdot 10^{-3} \f$ and \f$ 1.2\cdot 10^{-3} \f$).  At \f$ h = \Delta x \f$ the correction
+/// does not help: \f$ \Omega = 1 \f$ on the lattice, and where h varies, in the shock and at the
+/// contact, our approximation of grad-h raises \f$ L_1(\rho) \f$ by a fifth (1.506e-03 against
+/// 1.255e-03 at 450 particles) for a third pass over the neighbours.
+
+/// The race's runs: the study for the figure, and the (CPU time, error) points of each variant
+/// for the comparison at equal time.
+struct RaceRuns {
+  sph::ErrorVsTime study{"1D Sod: error against the CPU time of the whole run, one thread"};
+  std::vector<std::pair<double, double>> points[2][2][2];  // [eta][plain, grad-h][rho, v]
+};
+
+RaceRuns race_error_against_time(const Parameters& par) {
   const int threads = omp_get_max_threads();
   omp_set_num_threads(1);
   std::vector<int> resolutions;
@@ -1287,9 +1318,8 @@ Race step6_fair_race(const app::Chapter& chapter, const Parameters& par) {
   }
   std::printf("  (c) walls and signal velocity (C = 0.6), one thread; time of the whole run\n");
   std::printf("      h/dx  grad-h  N(window)  steps  wall [s]  CPU [s]  L1(rho)    L1(v)\n");
-  sph::ErrorVsTime study("1D Sod: error against the CPU time of the whole run, one thread");
-  std::vector<std::pair<double, double>> ours[2][2][2];  // [eta][grad-h][rho, v]: (time, error)
-  const double etas[2] = {1.0, 1.2};
+  RaceRuns race;
+  sph::ShockTubeSetup sod = par.tube;
   for (int variant = 0; variant < 2; ++variant) {
     for (int k = 0; k < 2; ++k) {
       const std::string method =
@@ -1297,56 +1327,81 @@ Race step6_fair_race(const app::Chapter& chapter, const Parameters& par) {
           (variant ? ", grad-h" : "");
       for (int resolution : resolutions) {
         sod.left_spacing = 1.0 / resolution;
-        Levers how = signal;
-        how.walls = true;
-        how.grad_h = variant == 1;
-        const app::TubeRun<1> run = race_tube(sod, etas[k], how, "race");
-        const auto e = sph::shock_tube_errors(run.particles, run.exact, t);
+        const Levers how{.timestep = sph::Settings::TimestepRule::signal_velocity,
+                         .courant = 0.6,
+                         .walls = true,
+                         .grad_h = variant == 1};
+        const app::TubeRun<1> run = race_tube(par, sod, race_etas[k], how, "race");
+        const auto e = sph::shock_tube_errors(run.particles, run.exact, par.t_end);
         const int n = static_cast<int>(e[0].count);
         std::string quoted = "";
         for (const Quoted& q : other_code) {
-          if (variant == 0 && q.eta == etas[k] && std::abs(q.in_window - n) <= 2) {
+          if (variant == 0 && q.eta == race_etas[k] && std::abs(q.in_window - n) <= 2) {
             quoted = format("\n        other code: %ld steps, %.2f s, %.2e, %.1e", q.steps,
                             q.seconds, q.l1_rho, q.l1_v);
           }
         }
-        std::printf("      %4.1f  %-6s  %9d  %5ld  %8.3f  %7.3f  %.3e  %.3e%s\n", etas[k],
+        std::printf("      %4.1f  %-6s  %9d  %5ld  %8.3f  %7.3f  %.3e  %.3e%s\n", race_etas[k],
                     variant ? "yes" : "no", n, run.steps, run.total_seconds, run.cpu_seconds,
                     e[0].L1, e[1].L1, quoted.c_str());
-        study.add({method,
-                   n,
-                   sod.left_spacing,
-                   run.cpu_seconds,
-                   {{"L1(rho)", e[0].L1}, {"L1(v)", e[1].L1}}});
-        ours[k][variant][0].push_back({run.cpu_seconds, e[0].L1});
-        ours[k][variant][1].push_back({run.cpu_seconds, e[1].L1});
+        race.study.add({method,
+                        n,
+                        sod.left_spacing,
+                        run.cpu_seconds,
+                        {{"L1(rho)", e[0].L1}, {"L1(v)", e[1].L1}}});
+        race.points[k][variant][0].push_back({run.cpu_seconds, e[0].L1});
+        race.points[k][variant][1].push_back({run.cpu_seconds, e[1].L1});
       }
     }
   }
   omp_set_num_threads(threads);
+  return race;
+}
 
-  // At equal time: ours interpolated, theirs along the power law through its two points.
+/// \subsection ch04_fair_equal At equal time
+///
+/// Our runs and the other code's were not made at the same times, so to compare them at equal
+/// cost we read both curves at five times, 0.1 to 2 s.  Ours is read with app::loglog_at
+/// (lib/app/curve_reading.hpp), linearly in \f$ \ln t \f$ and \f$ \ln L_1 \f$ between the two
+/// runs that bracket the time: both the error and the time are close to powers of the
+/// resolution, so neighbouring runs, a factor \f$ \sqrt 2 \f$ apart, lie on a nearly straight
+/// line there.  The other code's is read with app::power_law_at, along the power law through
+/// its two points -- all that two measurements say.  The part prints the ratio of our error
+/// to theirs for each \f$ h/\Delta x \f$, pressure term and quantity; below 1 we are ahead.  A
+/// star marks a time outside the span of one code's runs, where its curve is extrapolated.
+///
+/// What to look for.  At \f$ h = \Delta x \f$ our errors are 0.35 to 0.40 of the other code's
+/// in \f$ \rho \f$ and 0.49 to 0.52 in v, over the whole range from 0.1 to 2 s.  At
+/// \f$ h = 1.2\Delta x \f$ with the plain pressure term we lose in v, by 1.19 to 5.43 times,
+/// and in \f$ \rho \f$ from between 0.5 and 1 s on.  With the grad-h correction our errors at
+/// 1.2 are 0.27 to 0.55 of the other's in \f$ \rho \f$ and 0.64 to 0.74 in v.  So the goal --
+/// lower errors at equal time at both \f$ h/\Delta x \f$ -- is reached with the three levers,
+/// at \f$ h = 1.2\Delta x \f$ only with the third.  Two cautions.  Our times are CPU times and
+/// theirs wall times of a whole process.  For our one-threaded runs on an idle machine the two
+/// are the same (the table prints both; on a busy one the wall times grow, the CPU times do
+/// not), and at the four points where both codes were measured the comparison at
+/// \f$ h = \Delta x \f$, and with grad-h at 1.2, holds in wall time too (at 1800 particles and
+/// 1.2, in v: 1.189e-03 in 0.999 s against 1.2e-3 in 1.93 s).  And the other code's curve is a
+/// power law through two points, so at 0.1 s and 2 s it is extrapolated.
+
+void print_equal_time_table(const RaceRuns& race) {
   std::printf("      at equal time (our CPU, their wall): L1 here / L1 there (below 1: ahead)\n");
   std::printf("                  h = dx                         h = 1.2 dx\n");
   std::printf("                  plain          grad-h          plain          grad-h\n");
   std::printf("      time [s]    rho     v      rho     v       rho     v      rho     v\n");
   for (double seconds : {0.1, 0.2, 0.5, 1.0, 2.0}) {
     std::printf("      %7.2f  ", seconds);
-    ++race.compared;
     for (int k = 0; k < 2; ++k) {
       const Quoted& a = other_code[2 * k];
       const Quoted& b = other_code[2 * k + 1];
+      const bool their_outside = seconds < a.seconds || seconds > b.seconds;
       for (int variant = 0; variant < 2; ++variant) {
         for (int q = 0; q < 2; ++q) {
           const double ea = q == 0 ? a.l1_rho : a.l1_v, eb = q == 0 ? b.l1_rho : b.l1_v;
-          const double theirs = ea * std::pow(eb / ea, std::log(seconds / a.seconds) /
-                                                           std::log(b.seconds / a.seconds));
+          const double theirs = app::power_law_at(a.seconds, ea, b.seconds, eb, seconds);
           bool outside = false;
-          const double mine = loglog_at(ours[k][variant][q], seconds, outside);
-          const bool their_outside = seconds < a.seconds || seconds > b.seconds;
-          const double ratio = mine / theirs;
-          race.ahead[k][variant][q] += ratio < 1;
-          std::printf(" %5.2f%s", ratio, outside || their_outside ? "*" : " ");
+          const double mine = app::loglog_at(race.points[k][variant][q], seconds, outside);
+          std::printf(" %5.2f%s", mine / theirs, outside || their_outside ? "*" : " ");
         }
         std::printf(" ");
       }
@@ -1354,7 +1409,17 @@ Race step6_fair_race(const app::Chapter& chapter, const Parameters& par) {
     std::printf("\n");
   }
   std::printf("      (* extrapolated: outside the span of one code's runs)\n");
+}
 
+/// The figure `fair_race.png` is lib/app/error_figure.hpp's, with the time axis named for what
+/// it measures and the other code's four points added as quoted measurements
+/// (app::QuotedPoints: hollow markers joined by a dotted line), one set per
+/// \f$ h/\Delta x \f$, black for \f$ h = \Delta x \f$ and red for 1.2, the colours of our plain
+/// runs at the same \f$ h/\Delta x \f$.  A line of ours that lies below the quoted one at the
+/// same time is a race won.
+
+void save_race_figure(const app::Chapter& chapter, const Parameters& par,
+                      const sph::ErrorVsTime& study) {
   app::ErrorFigureOptions options;
   options.title = "1D Sod at t = 0.2: error against the time of the whole run, one thread";
   options.time_label = "time of the whole run [s] (this code: CPU; other: wall, quoted)";
@@ -1367,7 +1432,7 @@ Race step6_fair_race(const app::Chapter& chapter, const Parameters& par) {
         {},
         k == 0 ? plot::black : plot::red};
     for (const Quoted& q : other_code) {
-      if (q.eta != etas[k]) continue;
+      if (q.eta != race_etas[k]) continue;
       quoted.seconds.push_back(q.seconds);
       quoted.error["L1(rho)"].push_back(q.l1_rho);
       quoted.error["L1(v)"].push_back(q.l1_v);
@@ -1376,6 +1441,24 @@ Race step6_fair_race(const app::Chapter& chapter, const Parameters& par) {
   }
   options.columns = 2;
   app::save_error_figure(study, chapter.figure_path("fair_race.png").string(), options);
+}
+
+/// The step itself checks that the tube is the other code's and runs the parts in order; the
+/// checks read the step counts of (a) and the change of (b).  The race of (c) is reported,
+/// not checked: its times depend on the machine.
+
+Race step6_fair_race(const app::Chapter& chapter, const Parameters& par) {
+  std::printf("\nStep 6: a fair race with a mature code (1D Sod, t = %g)\n", par.t_end);
+  Race race;
+  if (!par.is_sod()) {
+    std::printf("  (the other code was measured on Sod's tube at t = 0.2 only: not run)\n");
+    return race;
+  }
+  race_time_steps(par, race);
+  race.walls_change = race_tube_ends(par);
+  const RaceRuns runs = race_error_against_time(par);
+  print_equal_time_table(runs);
+  save_race_figure(chapter, par, runs.study);
   return race;
 }
 
@@ -1412,14 +1495,27 @@ Race step6_fair_race(const app::Chapter& chapter, const Parameters& par) {
 /// the default resolution, and holds at the `--quick` one.  The 0.6 on the 1D order leaves
 /// room for the fitted order's scatter between 0.9 and 1.0 at the resolutions of Step 5, and
 /// still fails for \f$ h = 1.2\Delta x \f$ at the default resolutions, where the lattice-sum
-/// floor flattens the curve to an order of 0.5.
+/// floor flattens the curve to an order of 0.5.  The momentum checks keep chapter 3's
+/// \f$ 10^{-12} \f$, far above the round-off of 1.2e-15 that Step 1 prints and far below what
+/// a force that is not equal and opposite would leave.  The 15 % of Step 4 is the papers' own
+/// number; our shocked region's 3.2 % is far below it, so the check fails only for a viscosity
+/// that no longer damps the shocked gas.
+///
+/// The thresholds of Step 6 follow from its analysis.  At rest the signal velocity's step,
+/// \f$ C h/(2c) \f$, is 1.1 times eq 7's \f$ C h/(2.2c) \f$, so at the same C it takes about
+/// 1/1.1 of eq 7's steps (1266 against 1393); the check asks only for fewer.  A step that sees
+/// only relative velocities takes the same number boosted as at rest; the check allows one step
+/// of slack.  Eq 7 boosted by 3 should take 2.15 times its steps at rest; "more than twice"
+/// leaves room below that, and still fails for a step that ignores the boost.  And the walls,
+/// which change the finer tube's errors by 4.9e-12 of themselves, fail the check at
+/// \f$ 10^{-3} \f$ only if something from the ends reaches the window.
 ///
 /// The key numbers also go into `summary.txt`: the 1D error at the finer resolution, which the
 /// figures runner shows in its table of all chapters, and the scatter of Step 4.
 
 struct Findings {
   const Sod1D& sod_1d;
-  const EtaScan& eta;
+  const app::LatticeSumsCurves& eta;  // Step 2: the sums and the error at each h/dx
   const MultiD& multi_d;
   double mg_scatter;
   double order_1d;
@@ -1440,8 +1536,8 @@ void check_claims(app::Chapter& chapter, const Parameters& par, const Findings& 
   // The scan value nearest h = 1.2 dx (1.2 itself at full resolution, 1.25 with --quick).
   const auto nearer_1p2 = [](double a, double b) { return std::abs(a - 1.2) < std::abs(b - 1.2); };
   const auto near_1p2 = std::min_element(f.eta.eta.begin(), f.eta.eta.end(), nearer_1p2);
-  const double l1_at_one = f.eta.l1_rho.front();
-  const double l1_at_1p2 = f.eta.l1_rho[near_1p2 - f.eta.eta.begin()];
+  const double l1_at_one = f.eta.error.front();
+  const double l1_at_1p2 = f.eta.error[near_1p2 - f.eta.eta.begin()];
   if (is_sod) {
     chapter.check(
         l1_at_one < l1_at_1p2,
@@ -1516,12 +1612,13 @@ int main(int argc, char** argv) {
                          argc, argv);
     Parameters par;
     declare_parameters(chapter, par);
+    declare_resolutions(chapter, par);
     if (int rc = chapter.parse(); rc >= 0) return rc;
     set_resolution(par, chapter.quick());
     print_headline(par);
 
     const Sod1D sod_1d = step1_sod_1d(chapter, par);
-    const EtaScan eta = step2_lattice_sums(chapter, par);
+    const app::LatticeSumsCurves eta = step2_lattice_sums(chapter, par);
     const MultiD multi_d = step3_sod_2d_3d(chapter, par);
     const double mg_scatter = step4_monaghan_gingold_tube(chapter, par);
     const double order_1d = step5_error_against_run_time(chapter, par);

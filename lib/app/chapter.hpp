@@ -238,8 +238,9 @@ class Chapter {
   /// are reported, not checked.
   void begin_claims(bool own_schemes);
 
-  /// A claim of the chapter, printed on one line (wrapped at 100 columns).  A check ("[ok]" or "[FAILED]", recorded as
-  /// check() records it) when the run uses the chapter's own schemes (begin_claims) or when
+  /// A claim of the chapter, printed on one line (wrapped at 100 columns).  A check ("[ok]" or
+  /// "[FAILED]", recorded as check() records it) when the run uses the chapter's own schemes
+  /// (begin_claims) or when
   /// \p always -- a claim that must hold whatever the options, such as conservation; otherwise
   /// only reported, "[as claimed]" or "[not as claimed]", and it cannot fail the run.
   /// Returns \p ok.

@@ -188,7 +188,8 @@ inline void draw_panel(plot::Axes& axes, const sph::ErrorVsTime& study, const st
                .marker_size = 11.0,
                .marker_filled = false});
   }
-  axes.legend(plot::Corner::best);  // the corner that covers the fewest points
+  // The corner that covers the fewest points; if every corner holds points, room above them.
+  axes.legend(plot::Corner::best, true);
 }
 
 }  // namespace error_figure_detail
