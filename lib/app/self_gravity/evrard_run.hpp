@@ -1,0 +1,150 @@
+#pragma once
+/// \file
+/// \brief app::run_evrard: one run of the Evrard collapse with its energy history, the
+/// particles at t = 0.8, the extremes of its centre, its conservation errors and its cost; and
+/// app::extremes, the peaks of an energy history.
+///
+/// A chapter names the scene (its terms and its gravity) and runs it:
+///
+/// \code
+/// const app::EvrardRun run = app::run_evrard<Standard<sph::TreeGravity>>(
+///     "standard", setup, {{}, sph::MonaghanGingold1983{}}, sph::TreeGravity{}, settings, 3.0);
+/// const app::Extremes peaks = app::extremes(run);   // largest E_kin and E_th, deepest W
+/// \endcode
+///
+/// The energies are recorded after every step.  The run stops at t = 0.8 to keep a copy of the
+/// particles (the time of Selhammar's Figs 6-7) and the wall time and step count to there, then
+/// goes on to the end.  A run that the simulation stops (a time step below its minimum, a step
+/// budget exceeded, a non-finite value) is not an error here: the message is kept in
+/// EvrardRun::stopped and the run returns what it recorded.
+///
+/// Header-only, like the other shared pieces of lib/app that use lib/sph.
+
+#include "app/particle_measures.hpp"
+#include "app/progress.hpp"
+#include "app/stopwatch.hpp"
+#include "sph/diagnostics.hpp"
+#include "sph/error.hpp"
+#include "sph/setups/evrard.hpp"
+#include "sph/simulation.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <string>
+#include <vector>
+
+namespace app {
+
+/// What a chapter keeps of one run of the Evrard collapse.
+struct EvrardRun {
+  std::string name;
+  int particles = 0;
+  std::vector<double> t, kinetic, thermal, potential;  ///< after every step
+  sph::Particles<3> at_08;                             ///< the particles at t = 0.8
+  sph::Vec<3> centre_08 = sph::Vec<3>::Zero();         ///< their centre of mass
+  double seconds_08 = 0, seconds = 0;                  ///< wall time to t = 0.8, to the end
+  long steps_08 = 0, steps = 0;                        ///< steps to t = 0.8, to the end
+  double peak_density = 0, t_peak = 0;  ///< the largest density of any particle, and when
+  double least_h = INFINITY;            ///< the least smoothing length of any particle
+  double least_dt = INFINITY;           ///< the least time step (not counting output times)
+  std::string least_dt_criterion;       ///< what limited that step
+  double momentum_drift = 0;            ///< at the end, see app::momentum_drift
+  double energy_error_08 = 0, energy_error = 0;  ///< \f$ |E/E(0) - 1| \f$ at 0.8, at the end
+  std::string stopped;                           ///< why the run stopped early, if it did
+};
+
+/// The total energy of \p run at record \p k.
+inline double total_at(const EvrardRun& run, std::size_t k) {
+  return run.kinetic[k] + run.thermal[k] + run.potential[k];
+}
+
+namespace evrard_run_detail {
+
+/// Records the energies of the simulation \p s in \p run, and the extremes of its centre.
+template <class Simulation>
+void record(EvrardRun& run, const Simulation& s) {
+  const auto& p = s.particles();
+  run.t.push_back(s.time());
+  run.kinetic.push_back(sph::kinetic_energy(p));
+  run.thermal.push_back(sph::thermal_energy(p));
+  run.potential.push_back(s.potential_energy());
+  const auto densest = std::max_element(p.density.begin(), p.density.end());
+  if (*densest > run.peak_density) {
+    run.peak_density = *densest;
+    run.t_peak = s.time();
+  }
+  run.least_h = std::min(run.least_h,
+                         *std::min_element(p.smoothing_length.begin(), p.smoothing_length.end()));
+  if (s.steps() > 0 && s.last_limit().criterion != "output time" &&
+      s.last_limit().dt < run.least_dt) {
+    run.least_dt = s.last_limit().dt;
+    run.least_dt_criterion = s.last_limit().criterion;
+  }
+}
+
+}  // namespace evrard_run_detail
+
+/// Runs the Evrard sphere \p setup with the scene \p Scene (its \p terms and \p gravity, an
+/// ideal gas of the set-up's \f$ \gamma \f$, in open space) to \p t_end, recording after every
+/// step; called \p name in its progress report, which \p show_progress false silences.
+template <class Scene>
+EvrardRun run_evrard(const std::string& name, const sph::EvrardSetup& setup,
+                     const typename Scene::Terms& terms, const typename Scene::Gravity& gravity,
+                     const sph::Settings& settings, double t_end, bool show_progress = true) {
+  EvrardRun run;
+  run.name = name;
+  run.particles = setup.particles;
+  const Stopwatch clock;
+  sph::Simulation<Scene> sim(sph::make_evrard_sphere(setup), sph::Box<3>::open(), terms, gravity,
+                             sph::IdealGas{setup.gamma}, settings);
+  evrard_run_detail::record(run, sim);
+  ProgressDisplay display = ProgressDisplay::automatic();
+  display.report = nullptr;
+  Progress progress(t_end, name, show_progress ? display : ProgressDisplay{});
+  const auto on_step = [&](const auto& s) {
+    evrard_run_detail::record(run, s);
+    progress.update(s.steps() - 1, s.time(), s.last_limit().dt);
+  };
+  try {
+    sim.run_until(std::min(0.8, t_end), on_step);
+    run.at_08 = sim.particles();
+    run.centre_08 = sph::centre_of_mass(sim.particles());
+    run.seconds_08 = clock.seconds();
+    run.steps_08 = sim.steps();
+    run.energy_error_08 = std::abs(total_at(run, run.t.size() - 1) / total_at(run, 0) - 1);
+    if (t_end > 0.8) sim.run_until(t_end, on_step);
+  } catch (const sph::Error& e) {
+    run.stopped = e.what();
+  }
+  progress.finish();
+  run.seconds = clock.seconds();
+  run.steps = sim.steps();
+  run.momentum_drift = app::momentum_drift(sim.particles(), sph::Vec<3>::Zero());
+  run.energy_error = std::abs(total_at(run, run.t.size() - 1) / total_at(run, 0) - 1);
+  return run;
+}
+
+/// The extremes of an energy history: the largest kinetic and thermal energy and the deepest
+/// potential energy, each with the time it was reached.
+struct Extremes {
+  double kinetic = 0, t_kinetic = 0, thermal = 0, t_thermal = 0, potential = 0, t_potential = 0;
+};
+
+/// The extremes of the history \p t -> (\p kinetic, \p thermal, \p potential).
+inline Extremes extremes(const std::vector<double>& t, const std::vector<double>& kinetic,
+                         const std::vector<double>& thermal, const std::vector<double>& potential) {
+  Extremes x;
+  for (std::size_t k = 0; k < t.size(); ++k) {
+    if (kinetic[k] > x.kinetic) x.kinetic = kinetic[k], x.t_kinetic = t[k];
+    if (thermal[k] > x.thermal) x.thermal = thermal[k], x.t_thermal = t[k];
+    if (potential[k] < x.potential) x.potential = potential[k], x.t_potential = t[k];
+  }
+  return x;
+}
+
+/// The extremes of the energy history of \p run.
+inline Extremes extremes(const EvrardRun& run) {
+  return extremes(run.t, run.kinetic, run.thermal, run.potential);
+}
+
+}  // namespace app
