@@ -195,9 +195,9 @@ double random_scatter_theory(int n, double h) {
 /// that the average mean density is \f$ (N-1)/N \f$ within four standard errors of the average,
 /// and that the average \f$ \sigma_\rho \f$ is within 10 % of the theory -- loose enough for four
 /// draws in `--quick` mode, tight enough to catch a wrong self term (18 %) or a wrong h.
-/// The standard error is given an absolute floor of \f$ 10^{-3} \f$: four draws may by chance
-/// agree closely with one another, and a spread that came out small would then make the check
-/// fail on a difference no larger than the floor.
+/// The tolerance on the mean is four standard errors plus an absolute margin of
+/// \f$ 10^{-3} \f$: four draws may by chance agree closely with one another, and a spread that
+/// came out small would then make the check fail on a difference no larger than that margin.
 
 struct RandomSets {
   sph::Particles<3> first;
@@ -436,9 +436,9 @@ void draw_watkins_figure(app::Chapter& chapter, const Setup& s, const RandomSets
 /// The last line shows the density equal at every particle of a lattice to \f$ 10^{-15} \f$:
 /// the periodic images are seamless.
 ///
-/// A lattice of the scan is named by its dimension and its type.  The dimension is a number
-/// known at run time, and a three-way dispatch below turns it into the template parameter of
-/// the measurement, which is written once for every D.
+/// A lattice of the scan is named by its dimension and its type, so that the scan is one loop
+/// over one table of lattices; the measurement is a template in D, written once, and the
+/// dimension is turned into its template parameter in one place.
 
 struct LatticeCase {
   const char* name;
@@ -666,18 +666,18 @@ void step5_calibration(app::Chapter& chapter, const Setup& s, const Settled& gla
 ///    of tolerance, the search places \f$ 2h_i \f$ half-way between the N-th and (N+1)-th nearest
 ///    neighbour, so the count becomes N exactly without iteration.  On a lattice the N-th and
 ///    (N+1)-th neighbour can sit on the same shell; then \f$ 2h_i \f$ goes into the gap inside
-///    or outside that shell, whichever count is nearer N.  (An earlier version placed \f$ 2h \f$
-///    *on* the shell, where round-off decided which shell members counted: a cubic lattice asked
-///    for 64 got counts from 56 to 74.)
+///    or outside that shell, whichever count is nearer N.  (Placed *on* the shell, \f$ 2h \f$
+///    would leave it to round-off which shell members count: a cubic lattice asked for 64 then
+///    gets counts from 56 to 74.)
 ///  - **density**: Newton's method on eq A6 with the particle's own density,
 ///    \f$ \rho_i(h_i)\, V_D (2h_i)^D = N m_i \f$.  Written with the kernel's shape, the left side
 ///    is \f$ V_D 2^D \sum_j m_j \sigma_D\, w(r_{ij}/h_i) \f$ -- the \f$ h^{-D} \f$ of the kernel
 ///    cancels the \f$ h^D \f$ of the volume -- a sum that grows with \f$ h_i \f$ as neighbours
 ///    enter the kernel, with the derivative \f$ -\sum_j m_j \sigma_D\, w'(q_{ij})\, q_{ij}/h_i \f$
-///    computed in the same loop.  Each Newton step is limited to 30 % of h, so a particle whose
-///    first guess is far off (the centre of a dense cluster) walks to its h in a few steps; the
-///    candidates are gathered once for a radius a little larger than \f$ 2h \f$ and gathered
-///    again only when h grows past it.
+///    computed in the same loop.  A Newton step longer than half of h is replaced by a step of
+///    30 % of h in the same direction, so a particle whose first guess is far off (the centre
+///    of a dense cluster) walks to its h in a few steps; the candidates are gathered once for a
+///    radius a little larger than \f$ 2h \f$ and gathered again only when h grows past it.
 ///
 /// We apply all three to the settled and to the random set, and print the smallest, mean and
 /// largest neighbour count, the spread of h, the largest violation of eq A6 and the time.  The
@@ -780,8 +780,9 @@ void step6_rules(app::Chapter& chapter, const Setup& s, const Settled& glass,
 /// \f$ 2.5R \f$) and tests every particle in them.  With \f$ R = 1.1 \times 2h \f$ (a 10 % margin,
 /// so that the neighbour-number rule can move h without searching again) that is
 /// \f$ 2.5^3 \cdot 1.1^3 / \tfrac43\pi \approx 5 \f$ candidates per neighbour.  The density
-/// pass then evaluates one kernel per neighbour.  Both are proportional to
-/// \f$ N\, N_{\rm ngb} \f$, and for a uniform set nothing else enters.  The benchmark program
+/// pass then evaluates one kernel per neighbour.  Both grow as \f$ N\, N_{\rm ngb} \f$; what
+/// does not is the fixed work per particle and per cell visited, so the time per neighbour
+/// falls as the kernel fills.  The benchmark program
 /// (`bench`, 10^5 particles, 64 neighbours) measures the same pieces in isolation.  The runs go
 /// into an `sph::ErrorVsTime` study, which prints the table with the fitted order \f$ p \f$
 /// (error \f$ \propto \Delta x^p \f$) and draws the log-log figure.
@@ -789,9 +790,10 @@ void step6_rules(app::Chapter& chapter, const Setup& s, const Settled& glass,
 /// <b>What to look for.</b>  The lattice rows: the same error at every N (order 0), because
 /// the error is the bias of Step 4, which depends on \f$ \eta \f$ alone.  The glass rows: an
 /// error that falls with the neighbour number (0.6 %, 0.3 %, 0.13 % at 32, 64, 128) but not with
-/// N at fixed neighbours.  And the times: proportional to N, and growing by a factor of 1.5 to
-/// 1.8 with each doubling of the neighbour number (the search's cost per particle does not
-/// all scale with the kernel).
+/// N at fixed neighbours.  And the times: proportional to N, and growing by a factor of 1.4 to
+/// 2.6 with each doubling of the neighbour number (2.0, then 1.6, at N = 32768): on the whole
+/// less than the doubling of the pairs, since the search's cost per particle does not all scale
+/// with the kernel, and scattered, since the shortest runs take milliseconds.
 
 /// The sweep is `app::run_density_cost_sweep` (`lib/app/density/density_timing.hpp`).  It runs on
 /// one thread, so that the times compare across N even on a shared machine (the smallest sets,

@@ -256,8 +256,10 @@ struct Parameters {
 /// towards 0.1, so its maximum, \f$ \alpha \f$, may not be smaller.  The Courant factor stops
 /// at 0.8: at 0.9 a particle of a 1D shock tube is left with negative internal energy.  The
 /// weak tube's cell count must be even, because the thin gas is a lattice of half as many cells
-/// across as the dense slab (8 across for the paper's 16).  The four switches are the
-/// readings of Step 2 and the update of Step 1, each off by default.
+/// across as the dense slab (8 across for the paper's 16).  The four switches, each off by
+/// default, are the printed readings and forms the paper leaves open: eq 16's update (Step 1's
+/// explicit kick), its normalisation and its frame, and the weak tube's densities as printed
+/// (Step 3).  Eq 13's reading has no switch: Step 2 runs both.
 
 void declare_parameters(app::Chapter& chapter, Parameters& par) {
   // (the switch runs from 0.1 up to alpha, so alpha may not be below 0.1)
@@ -483,7 +485,8 @@ void step1_stiffness(const app::Chapter& chapter, const Parameters& par) {
 /// rate, and the compression seems to explain only half the approach.)  The tubes: with the
 /// mean-velocity reading the kinetic energy and peak speed at t = 20 are within 4 % of the
 /// standard viscosity's; with the difference reading the gas has almost stopped -- its kinetic
-/// energy is 5 % of the standard run's, and 14 % of the momentum scale has gone.  So eq 16 must be
+/// energy is 5 % of the standard run's, and a quarter of the momentum scale has gone
+/// (2.5e-01).  So eq 16 must be
 /// read literally, and the rest of the chapter does.  The printed normalisation changes nothing
 /// visible here, and one more row foreshadows Step 3: the run without any viscosity has about
 /// the same kinetic energy and error as the modified viscosity.
@@ -529,9 +532,10 @@ double collective_fraction(const Sim& sim) {
   return moving > 0 ? double(on) / double(moving) : 0.0;
 }
 
-/// The two counts of a weak-tube run with the modified viscosity, at the two pauses of
-/// app::run_weak_tube, t = 10 and 20 (-1 where not taken).  activity_at_pauses() returns
-/// the callable that takes them.
+/// What Fig 2's text needs of the modified run besides its profiles: how much of the gas each
+/// of the two terms acts on, at the two pauses of app::run_weak_tube (t = 10 and 20; -1 where
+/// a count was not taken).  A run cannot be asked afterwards: the terms keep only their last
+/// evaluation.
 
 struct Activity {
   double vnr_on[2] = {-1, -1}, collective_on[2] = {-1, -1};
@@ -547,8 +551,9 @@ auto activity_at_pauses(Activity& activity) {
 /// On the sphere, the census of eq 13 is taken twice: over all pairs, and over the pairs of
 /// particles whose neighbourhood does not reach the sphere's edge, where half a neighbourhood
 /// halves the \f$ \dot\rho \f$ sum (see above).  "Inside" is within \f$ R - 2h \f$ of the
-/// centre, with h the median smoothing length (0.8 R at 8192 particles; never less than
-/// 0.1 R, for a coarse sphere).
+/// centre, with h the median smoothing length: at 8192 particles h is about 0.1 R and the inner
+/// region reaches 0.79 R; for a sphere so coarse that 2h approaches R, the region is kept at
+/// 0.1 R.
 /// vnr_fraction_on_sphere() builds the simulation without running it: the constructor
 /// evaluates the first forces, and with them \f$ \dot\rho \f$ and every pair's condition at
 /// t = 0.
@@ -1035,9 +1040,11 @@ void galilean_boost(Sphere& result, const Parameters& par, sph::HomologousSphere
 
 /// \subsection ch05_sphere_step The step
 ///
-/// The step runs the reference and the four scenes, prints the table and the census, draws
-/// the two figures (app::save_sphere_energy_figure, app::save_sphere_density_figure) and ends
-/// with the boost.
+/// The reference runs first, because the table reads every SPH run against it: the time of
+/// its maximum compression is where Fig 4 is taken and where the runs' central densities are
+/// compared.  The figures are app::save_sphere_energy_figure and
+/// app::save_sphere_density_figure; the boost comes last, because it re-runs the modified
+/// scene in a moving frame and needs the resting run's numbers to compare with.
 ///
 /// Reading the figures.  In Fig 3 each scheme has one colour and three lines: kinetic energy
 /// solid, thermal dashed, their sum dotted; the reference is the wide grey band beneath.  A
@@ -1138,13 +1145,16 @@ struct Strong {
 /// One row of the Sod table is one run of chapter 4's shock-tube runner (app::run_shock_tube)
 /// with the 1D smoothing-length rule of chapter 4, \f$ h \f$ from the density with an expected
 /// four neighbours, and the collective term's \f$ N_n = 4 \f$ to match: the virtual particle
-/// of eq 16 has the mass of the neighbourhood it stands for.  The errors are chapter 3's,
+/// of eq 16 has the mass of the neighbourhood it stands for.  The errors are chapter 4's,
 /// sph::shock_tube_errors: \f$ L_1 \f$ of \f$ \rho \f$, \f$ v \f$ and P against the exact
 /// Riemann solution over the particles of the window \f$ |x| \le 0.5 \f$.  The table adds the
-/// steps, the wall time and the momentum drift, which for the three pair viscosities is
-/// round-off and for the modified viscosity is what the collective term, having no reaction,
-/// leaves behind.  The figure puts the modified run (black) over the standard one (blue, larger
-/// dots, so that it shows where the two agree) and the exact solution.
+/// steps, the wall time and the momentum drift.  In Sod's tube the drift is round-off for every
+/// viscosity, the modified one too (3.9e-14): the gas moves one way only, so no particle moves
+/// against its neighbourhood, and the collective term, read as eq 16 prints it, has nothing to
+/// act on.  In the 3D tube, set up on glasses whose particles also move across the flow, the
+/// modified run's drift is 1.2e-02.  The figure draws the modified run (black) first and the
+/// standard one (blue, larger dots) over it, with the exact solution: where the two agree only
+/// blue shows, and the black that shows is where the modified viscosity rings.
 
 template <class Scene>
 app::TubeRun<1> sod_row(Strong& out, const std::string& name, const typename Scene::Terms& terms,
@@ -1460,7 +1470,9 @@ Cost step6_error_against_run_time(const app::Chapter& chapter, const Parameters&
 /// kinds of claim hold whatever the options and are always checked: conservation by the pair
 /// viscosities, and the total energy of every run.
 ///
-/// The steps hand their numbers over in one struct, so that the checks read as the table above.
+/// Each step returns what its claims need, and `main` hands the whole set over in one struct:
+/// a check can then be read beside the row of the table above that it tests, and no check
+/// runs a simulation of its own.
 
 struct Findings {
   const Readings& readings;
@@ -1472,7 +1484,7 @@ struct Findings {
 
 /// Conservation, for the runs of one scene.  A pair viscosity adds equal and opposite forces, so
 /// its total momentum may drift only by round-off, \f$ 10^{-12} \f$ of the momentum scale (the
-/// runs show about \f$ 10^{-14} \f$).  The collective term acts on one particle at a time and
+/// runs show \f$ 10^{-14} \f$ or less).  The collective term acts on one particle at a time and
 /// has no reaction, so the modified viscosity's momentum is not checked, only reported (its
 /// drift is a finding of the table, not a failure).  The total energy, kinetic plus thermal,
 /// must hold to \f$ 10^{-3} \f$ for every run: the leapfrog's error at these Courant factors,
@@ -1550,9 +1562,10 @@ void sphere_claims(app::Chapter& chapter, const Parameters& par, const Findings&
 
 /// Steps 5 and 6: the strong shocks.  The 3D tube and Sod's tube test that the modified
 /// viscosity is the less accurate one where it hardly acts (three times the standard
-/// viscosity's error in Sod's tube, where the ringing is plain); the streams, that every
-/// viscosity stops the streams and that without one they pass; Sod's order, that the standard
-/// viscosity converges at first order, as a captured shock should.
+/// viscosity's error in Sod's tube, where the ringing is plain); the streams, that the standard
+/// and the modified viscosity stop them and that without a viscosity they pass (the other rows
+/// of the streams table are reported, not checked); Sod's order, that the standard viscosity
+/// converges at first order, as a captured shock should.
 
 void shock_claims(app::Chapter& chapter, const Findings& f) {
   const double mg_std = f.strong.mg_l1_rho.at("standard"),
@@ -1599,8 +1612,10 @@ void check_claims(app::Chapter& chapter, const Parameters& par, const Findings& 
 ///
 /// The console output follows the same order: a headline that names the three viscosities as
 /// the library describes them, one block per step with its tables, and at the end the checks,
-/// one line per claim.  Every number the text quotes is read off that output, which the book
-/// keeps beside the figures.
+/// one line per claim.  The numbers the text quotes from this program's runs are read off that
+/// output, which the book keeps beside the figures (the test suite checks those in scientific
+/// notation and the step counts); a few come from elsewhere and say so -- the tests of the
+/// library, and the benchmark program's cost of a step.
 ///
 /// `main` is the table of contents: it reads the options, names the three viscosities, runs the
 /// six steps in order and checks the claims.  Run as

@@ -50,7 +50,7 @@
 ///     their softening, a particle thrown far out.
 ///
 /// What we find, in short.  The tree with quadrupoles at its default opening angle
-/// \f$ \theta = 0.3 \f$ is 16 times faster than direct summation at 8192 particles and 56
+/// \f$ \theta = 0.3 \f$ is 17 times faster than direct summation at 8192 particles and 48
 /// times at 32768 (the recorded run; the ratio grows as \f$ N/\log N \f$), with a
 /// 99th-percentile force error of \f$ 4\times10^{-4} \f$.  Both of
 /// Selhammar's claims about the collapse reproduce as he states them: the standard viscosity's
@@ -59,10 +59,11 @@
 /// curves are too shallow -- it brakes the infalling gas before the shock -- and the modified
 /// viscosity's are too deep: its kinetic energy peaks 27 % above the exact answer, its shock
 /// lags a third behind the reference's, and its collective term does not conserve momentum (a
-/// third of the momentum scale).  The energy it used to lose (6 %) was the integration's: the
-/// leapfrog now pays the work done on the velocities the collective term changes (chapter 5).  The
-/// modern switch is the most accurate per CPU second in density, the modified viscosity in velocity
-/// at low resolution only.  Softening gravity with the smoothing length costs 1 % of the energy by
+/// third of the momentum scale).  Its energy is kept only because the leapfrog pays the work
+/// done on the velocities the collective term changes at the kicks (chapter 5); a leapfrog that
+/// does not loses 6 % of it by t = 3.  The modern switch is the most accurate per CPU second in
+/// density, the modified viscosity in velocity, at every resolution of the series (1024 to 8192
+/// particles).  Softening gravity with the smoothing length costs 1 % of the energy by
 /// t = 3; a fixed softening length conserves it to \f$ 5\times10^{-5} \f$.  Details in
 /// \ref ch06_findings "the findings".
 ///
@@ -363,7 +364,7 @@ DirectCheck step1_direct_summation(const Parameters& par) {
 /// \f$ of a length that follows the mean spacing.  The Evrard sphere's difference is slightly
 /// smaller, \f$ -9.21\times10^{-3} \f$ to \f$ -1.41\times10^{-3} \f$, at the same rate: the
 /// crowded centre costs nothing extra, because h shrinks there as the particles crowd.  The
-/// net force is \f$ 3.0\times10^{-17} \f$ or less: equal and opposite pair forces, summed in
+/// net force is \f$ 4.0\times10^{-17} \f$ or less: equal and opposite pair forces, summed in
 /// floating point.  Direct summation is the reference the tree is measured against.
 
 /// \section ch06_tree Step 2: the tree -- what it costs and what it gets
@@ -492,14 +493,15 @@ TreeStudy step2_tree(const app::Chapter& chapter, const Parameters& par) {
   return study;
 }
 
-/// **Reading the accuracy table.**  On 8192 particles direct summation takes 0.395 s an
+/// **Reading the accuracy table.**  On 8192 particles direct summation takes 0.415 s an
 /// evaluation.  The quadrupole tree at the default \f$ \theta = 0.3 \f$ has a median error of
 /// \f$ 8.39\times10^{-5} \f$, a 99th percentile of \f$ 3.98\times10^{-4} \f$ and a maximum of
 /// \f$ 6.66\times10^{-4} \f$, with 1376 interactions a particle; monopoles at the same angle and
 /// the same interaction count reach \f$ 2.86\times10^{-3} \f$ and \f$ 1.09\times10^{-2} \f$, a
-/// maximum above the target.  The quadrupoles cost a quarter more time (0.062 of direct
-/// summation's against 0.050) for a 99th percentile seven times smaller.  Above
-/// \f$ \theta = 0.6 \f$ the interactions stay at 999-1001 a particle and the maximum error at
+/// maximum above the stricter target (\f$ 7\times10^{-3} \f$), though within the looser one.  The
+/// quadrupoles cost a tenth more time (0.054 of direct summation's against 0.049) for a 99th
+/// percentile seven times smaller.  Above \f$ \theta = 0.6 \f$ the interactions stay at 999-1001 a
+/// particle and the maximum error at
 /// \f$ 6.72\times10^{-3} \f$ (quadrupoles) and \f$ 3.29\times10^{-2} \f$ (monopoles): there
 /// almost every cube that the angle would accept is opened anyway, because it may hold a particle
 /// within the softening range, and what remains is the near field, summed pair by pair.  That near
@@ -520,11 +522,12 @@ TreeStudy step2_tree(const app::Chapter& chapter, const Parameters& par) {
 /// stays flat if the cost grows as \f$ N \f$ and grows slowly if it grows as
 /// \f$ N\log N \f$.
 ///
-/// In the recorded run direct summation's time grows fourfold at each doubling of N (0.3871 s
-/// at 8192 particles, 1.5423 s at 16384, 6.4495 s at 32768), the tree's a little more than
-/// twofold (0.0238 s, 0.0524 s, 0.1155 s, then 0.2513 s at 65536), so the tree's advantage
-/// grows with N: 16.3 times at 8192 particles, 55.8 at 32768.  Its time per particle rises from
-/// 2.90 to 3.84 microseconds between 8192 and 65536 particles: the \f$ \log N \f$ of the walk.
+/// In the recorded run direct summation's time grows fourfold at each doubling of N (0.4172 s
+/// at 8192 particles, 1.6357 s at 16384, 6.5738 s at 32768), the tree's about twofold
+/// (0.0249 s, 0.0537 s, 0.1368 s, then 0.2515 s at 65536), so the tree's advantage grows with
+/// N: 16.7 times at 8192 particles, 48.1 at 32768.  Its time per particle rises from 3.04 to
+/// 3.84 microseconds between 8192 and 65536 particles: the \f$ \log N \f$ of the walk.  (The
+/// row of 32768, 4.17, is out of line: the machine was shared while it ran.)
 /// Below 4096 particles the ratio is small, and the time per particle higher: the tree runs on
 /// one thread there, and the softened near field is most of such a small sphere.
 
@@ -717,10 +720,10 @@ FreeFallResult step3_free_fall(const app::Chapter& chapter, const Parameters& pa
 /// **Why a fixed softening of 0.01.**  A fixed length makes the softened potential a function
 /// of the positions alone, so the leapfrog conserves the total energy up to its own error,
 /// whatever the density does.  The length must not soften gravity on scales that the gas
-/// resolves, or it would change the collapse: 0.01 is about the smallest smoothing length the
-/// standard run reaches at its densest (\f$ 1.05\times10^{-2} \f$, Step 7), so only the
-/// collapsed centre is softened more than with h, and the rest of the sphere, where h is
-/// larger, less.
+/// resolves, or it would change the collapse: 0.01 is just below the smallest smoothing length
+/// the standard run reaches at its densest (\f$ 1.05\times10^{-2} \f$, Step 7), so gravity is
+/// softened less than with h everywhere -- by a few per cent in the collapsed centre, by far
+/// more in the rest of the sphere, where h is larger -- and never on a scale the gas resolves.
 
 struct Collapse {
   std::vector<app::EvrardRun> runs;  // standard, modified, switch
@@ -1146,8 +1149,8 @@ Extreme step7_extreme(const Parameters& par, const Collapse& c) {
 /// \f$ 6.7\times10^{-4} \f$ (both targets met with a factor 7 and 10 to spare); monopoles at
 /// the same angle: \f$ 2.9\times10^{-3} \f$ and \f$ 1.1\times10^{-2} \f$.  Its net force is
 /// \f$ 2\times10^{-6} \f$ of the forces' scale (direct summation: round-off).  One evaluation
-/// costs 1.0 microseconds per particle on two idle threads with AVX-512 at 8192 particles and
-/// 1.4 at 65536 (2.90 and 3.84 in the run of `output.txt`, on the AVX2 machine): the
+/// costs 3.04 microseconds per particle at 8192 particles and 3.84 at 65536 in the recorded run
+/// (two threads of a shared machine; the benchmark program measures it on a quiet one): the
 /// \f$ N\log N \f$ line of `tree_cost.png`.  Why \f$ \theta = 0.3 \f$ and not the 0.5-0.7 of
 /// many codes: on a uniform sphere the 99th percentile at 0.5 is \f$ 4\times10^{-3} \f$, above
 /// the target, and the cost barely changes -- in an SPH code the near field, where every pair
@@ -1179,8 +1182,9 @@ Extreme step7_extreme(const Parameters& par, const Collapse& c) {
 /// and 36 % in W.  Its collapse goes further than the exact one can: the gas passes through
 /// the shock without enough dissipation (the restricted term acts only where the approach
 /// exceeds what the compression explains, which in a converging flow near the centre it
-/// rarely does).  Its energy, which earlier versions of this course lost (5.6 % by t = 3), is
-/// now conserved as the others' are: it changes by 1.4 % by t = 3 with the softening equal to h
+/// rarely does).  Its energy is conserved as the others' are, because the leapfrog pays the
+/// work of the collective term's kicks (without that payment it loses 5.6 % by t = 3): it
+/// changes by 1.4 % by t = 3 with the softening equal to h
 /// (standard and switch 0.9 %), most of it the softening's error, which is largest in the
 /// modified viscosity's denser core.  The collective term conserves
 /// \f$ \Delta T + \Delta U = 0 \f$ in each kick (chapter 5), but it changes the velocities at
@@ -1240,7 +1244,7 @@ Extreme step7_extreme(const Parameters& par, const Collapse& c) {
 /// about one); the modified viscosity's takes about 190 s: its denser centre needs 3163 steps,
 /// each about twice the standard's cost.  The whole chapter takes about 6 minutes there, over
 /// the 3 we aim at.  The run in `output.txt` was made on two cores with AVX2 only, whose vector
-/// units are half as wide: 101 s, 296 s and 10.6 minutes.  Gravity
+/// units are half as wide, and shared with other work: 107 s, 328 s and 11.6 minutes.  Gravity
 /// is not the reason: the bench (`build/bench/bench --only evrard`) times the whole step at
 /// 3.0-3.3 microseconds a particle at 22000 particles, of which the tree is 1.2-1.5.  The
 /// hydrodynamic part costs four times the shock tube's step, because in a collapse a fifth to
@@ -1284,7 +1288,7 @@ Extreme step7_extreme(const Parameters& par, const Collapse& c) {
 /// are reported); conservation and the tree's accuracy are checked always.
 ///
 /// Each check and the reason for its bound:
-///  - direct summation: the uniform sphere's W within 0.02 of \f$ -\tfrac35 \f$ at the largest
+///  - direct summation: the uniform sphere's W within 2 % of \f$ -\tfrac35 \f$ at the largest
 ///    N and closer than at the smallest (the softening's error must shrink), and a net force
 ///    below \f$ 10^{-12} \f$ of its scale, round-off with a wide margin;
 ///  - the tree at the default opening angle and order: a 99th percentile below
@@ -1402,7 +1406,8 @@ void check_claims(app::Chapter& chapter, const Parameters& par, const Findings& 
 /// Two details of its order.  The reference files are read once before anything runs, so that
 /// a missing or damaged file stops the program in a second rather than after the tree study.
 /// And Step 2 is two calls: the accuracy study returns the tree's results, and the cost
-/// against N adds its timings to them; the checks read both.
+/// against N adds its timings to them, for the table and the figure; the checks read the
+/// accuracy alone, since a time depends on the machine.
 
 int main(int argc, char** argv) {
   return app::run_main([&] {
@@ -1410,10 +1415,12 @@ int main(int argc, char** argv) {
                          argv);
     Parameters par;
     declare_parameters(chapter, par);
-    std::string reference_dir = std::string(SPH_CHAPTER_SOURCE_DIR) + "/reference";
+    std::string reference_dir;  // empty: the chapter's own, found after parsing
     chapter.parameter("--reference-dir", reference_dir,
-                      "where the 1D reference files are (default: the chapter's reference/)");
+                      "where the 1D reference files are (empty: the chapter's reference/ in "
+                      "the source tree)");
     if (int rc = chapter.parse(); rc >= 0) return rc;
+    if (reference_dir.empty()) reference_dir = std::string(SPH_CHAPTER_SOURCE_DIR) + "/reference";
     par.quick = chapter.quick();  // (the resolutions that are options have their quick defaults)
     // (the reference data first: a missing file stops the chapter before any work)
     for (const char* file :

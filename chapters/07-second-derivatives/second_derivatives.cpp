@@ -251,9 +251,10 @@ Step1 step1_lattice(const Parameters& par) {
 /// particle, and the self term would bias every density up by 18 % in 3D).  The **settled set**
 /// is that random set relaxed to uniform density (\ref ch02_settled "chapter 2, Step 3"), its
 /// densities with the self term.  What to look for: the settled set's scatter against the
-/// paper's \f$ \sigma_\rho = 0.004 \f$, and the random set's against its 0.281 (chapter 2 found
-/// ours in 3D at 0.27, the Poisson value, and why the paper's is higher; in 2D, with 30
-/// neighbours, the Poisson scatter is 0.33).
+/// paper's \f$ \sigma_\rho = 0.004 \f$, and the random set's against its 0.281.  This draw's
+/// is 0.2726 in 3D; chapter 2 averaged 20 draws to 0.2622 against a Poisson theory of 0.2628,
+/// and found the paper's value about two standard deviations of a single draw above them.  In
+/// 2D, with 30 neighbours, this draw's scatter is 0.3274.
 ///
 /// Both sets come from one seed (`--seed`): the settled set *is* the random set after
 /// relaxation, so Figs 1 and 3 show the same particles before and after they settle, and
@@ -353,8 +354,9 @@ std::vector<MethodResult<D>> fig1(const app::Chapter& chapter, const Sets<D>& se
 /// The sweep runs the four methods on three draws of the noise (seeds 11, 12, 13) at each
 /// amplitude from 0.001 to 0.3, and at the `--noise` value if it is not one of them, and keeps
 /// the mean rms error and the range of the three.  Reading the 3D table from the top: at
-/// \f$ \epsilon = 0.001 \f$ the errors are those of the noise-free field, 0.0426 for Watkins
-/// and 0.0331 for Brookshaw; by \f$ \epsilon = 0.03 \f$ Brookshaw's has grown to 0.7770 and
+/// \f$ \epsilon = 0.001 \f$ Watkins' error is that of the noise-free field, 0.0426 against
+/// Step 3's 0.0425, while Brookshaw's is already 0.0331 against 0.0207 -- it feels a noise of a
+/// thousandth; by \f$ \epsilon = 0.03 \f$ Brookshaw's has grown to 0.7770 and
 /// Watkins' only to 0.0713; from 0.01 on Brookshaw's grows in proportion to the noise (0.2597,
 /// 0.7770, 2.5892, 7.7673), and Watkins' approaches that slope as its noise-free part fades.
 /// The half-ranges are at most 3 % of the means: the draws agree.
@@ -684,8 +686,9 @@ CostStudy cost(const Parameters& par, const Sets<3>& sets) {
 /// and densities.  The two must agree to round-off, since they are the same sums taken in
 /// another order: a larger difference would mean that the term in the step is not the operator
 /// the static tests measured.  What to look for: the difference \f$ 1.6\cdot 10^{-15} \f$;
-/// the analytic error 0.0305, within the half of \f$ (2\pi h)^2 \f$ (0.090) that the checks
-/// allow; and the net force \f$ 4.98\cdot 10^{-4} \f$ of Watkins' form against
+/// the analytic error 0.0305, within the check's bound of 0.090 (half the
+/// \f$ (2\pi h)^2 \f$ of Step 1's 3D lattice); and the net force \f$ 4.98\cdot 10^{-4} \f$ of
+/// Watkins' form against
 /// \f$ 1.13\cdot 10^{-17} \f$ of Flebbe's.  The times are the medians of five pairs of
 /// evaluations, taken alternately so that both see the same state of the machine.
 
@@ -770,11 +773,12 @@ TermStudy viscosity_term(const Sets<3>& sets) {
 ///
 /// Each claim of Watkins et al. §3 that this chapter touches, with the numbers that decide it
 /// (3D, as the paper's figures; the 2D numbers are in the tables above):
-///  - on the settled set all methods are very accurate (rms error below 5 % of \f$ 4\pi^2 \f$);
+///  - on the settled set all methods are very accurate (every method's scatter about its
+///    fitted amplitude below 0.05);
 ///  - the two-pass methods are slightly over-smoothed at the peaks (fitted amplitude below
 ///    Brookshaw's);
 ///  - with a noisy velocity, Watkins is the most accurate, Flebbe very accurate (within twice
-///    Watkins' error), Brookshaw extremely inaccurate (an rms error above the amplitude itself);
+///    Watkins' error), Brookshaw extremely inaccurate (an rms error more than five times Watkins');
 ///  - on the random set Watkins is the most accurate by far (below half the next method's
 ///    error);
 ///  - the noise of Watkins' curl curl on the random set is "considerably less" than the noise in
@@ -933,14 +937,15 @@ void check_claims(app::Chapter& chapter, bool own_schemes, const Results& r) {
 /// \section ch07_main The main program
 ///
 /// `main` declares the five options, each with its range, and runs the nine steps in order,
-/// each in 2D and then in 3D, so that the output reads in the order of the text; the summary
-/// figures of Steps 4 and 7 need both dimensions and are drawn after them.  Two decisions are
-/// taken here rather than in a step.  `--quick` shortens only the sweeps of Steps 7 and 8: the
-/// paper's sets and the noise sweep are kept, so that the quick run checks the paper's claims
-/// at the paper's resolution.  And `own` says whether the options are the chapter's own -- 5000
-/// particles, 30 and 60 neighbours, noise 0.1 -- under which the paper's claims are checks that
-/// can fail the run; with other options they are only reported, while the library's promises
-/// (the lattice, the compressive field, the term in the step) are checked whatever the options.
+/// Steps 1-7 each in 2D and then in 3D, Steps 8 and 9 in 3D only, so that the output reads in the
+/// order of the text; the summary figures of Steps 4 and 7 need both dimensions and are drawn after
+/// them.  Two decisions are taken here rather than in a step.  `--quick` shortens only the sweeps
+/// of Steps 7 and 8: the paper's sets and the noise sweep are kept, so that the quick run checks
+/// the paper's claims at the paper's resolution.  And `own` says whether the options are the
+/// chapter's own -- 5000 particles, 30 and 60 neighbours, noise 0.1 -- under which the paper's
+/// claims are checks that can fail the run; with other options they are only reported, while the
+/// library's promises (the lattice, the compressive field, the term in the step) are checked
+/// whatever the options.
 
 int main(int argc, char** argv) {
   return app::run_main([&] {

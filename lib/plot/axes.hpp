@@ -6,7 +6,8 @@
 /// plot::Axes& ax = fig.panel(0, 0);
 /// ax.xlabel("x [length]").ylabel("\\rho").xlim(-0.5, 0.5);
 /// ax.scatter(x, rho, {.label = "SPH", .color = plot::black, .size = 2.0});
-/// ax.line(x_exact, rho_exact, {.label = "exact", .color = plot::red, .style = plot::Dash::dashed});
+/// ax.line(x_exact, rho_exact,
+///         {.label = "exact", .color = plot::red, .style = plot::Dash::dashed});
 /// ax.legend(plot::Corner::upper_right);
 /// \endcode
 ///

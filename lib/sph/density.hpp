@@ -3,9 +3,10 @@
 /// \brief The density pass: the SPH sum for rho_i over the neighbour list.
 ///
 /// Two forms appear in the papers:
-///  - **pair-averaged** (Selhammar 1997 eq 5): \f$ \rho_i = \sum_j \bar m_{ij}\, W(r_{ij}, \bar h_{ij}) \f$,
-///    with \f$ \bar m_{ij} = (m_i + m_j)/2 \f$ and \f$ \bar h_{ij} = (h_i + h_j)/2 \f$, the self term
-///    \f$ m_i W(0, h_i) \f$ included;
+///  - **pair-averaged** (Selhammar 1997 eq 5):
+///    \f$ \rho_i = \sum_j \bar m_{ij}\, W(r_{ij}, \bar h_{ij}) \f$, with
+///    \f$ \bar m_{ij} = (m_i + m_j)/2 \f$ and \f$ \bar h_{ij} = (h_i + h_j)/2 \f$, the self
+///    term \f$ m_i W(0, h_i) \f$ included;
 ///  - **gather** (Watkins et al. 1996 eq A1): \f$ \rho_i = \sum_j m_j\, W(r_{ij}, h_i) \f$.
 ///
 /// The same pass can sum, when a term of the scene asks for them (fields.hpp, Needs), the rate
@@ -13,7 +14,8 @@
 /// with the same masses and kernel as the density:
 /// \f[ \dot\rho_i = \sum_j w_{ij}\, \mathbf v_{ij}\cdot\nabla_i W_{ij}, \qquad
 ///     (\nabla\cdot\mathbf v)_i = -\frac{\dot\rho_i}{\rho_i}, \qquad
-///     (\nabla\times\mathbf v)_i = \frac{1}{\rho_i} \sum_j w_{ij}\, \mathbf v_{ij}\times\nabla_i W_{ij}, \f]
+///     (\nabla\times\mathbf v)_i
+///       = \frac{1}{\rho_i} \sum_j w_{ij}\, \mathbf v_{ij}\times\nabla_i W_{ij}, \f]
 /// with \f$ w_{ij} = \bar m_{ij} \f$ and \f$ W_{ij} = W(r_{ij}, \bar h_{ij}) \f$ (pair-averaged)
 /// or \f$ m_j \f$ and \f$ W(r_{ij}, h_i) \f$ (gather).  \f$ \dot\rho_i \f$ is then exactly the
 /// time derivative of the density sum at fixed h (Selhammar eqs 10-11 use it to tell

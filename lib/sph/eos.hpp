@@ -13,7 +13,8 @@
 
 namespace sph {
 
-/// Ideal gas, \f$ P = (\gamma - 1)\rho u \f$, \f$ c = \sqrt{\gamma P/\rho} \f$ (Selhammar 1997 after eq 6).
+/// Ideal gas, \f$ P = (\gamma - 1)\rho u \f$, \f$ c = \sqrt{\gamma P/\rho} \f$
+/// (Selhammar 1997 after eq 6).
 struct IdealGas {
   double gamma = 5.0 / 3.0;
   static constexpr bool evolves_energy = true;

@@ -83,7 +83,8 @@ struct PairForce {
   double r_ij[3];  // the first D are used
   /// The non-central part: an empty member (no storage) when no term of the scene has one.
   [[no_unique_address]] std::conditional_t<with_extra, PairAcceleration, NoPairAcceleration> extra;
-  /// \f$ m_j H_{ij} g \f$ when a term says who is heated (else \f$ \tfrac12 f \f$ is used; no storage).
+  /// \f$ m_j H_{ij} g \f$ when a term says who is heated
+  /// (else \f$ \tfrac12 f \f$ is used; no storage).
   [[no_unique_address]] std::conditional_t<with_heating, double, NoHeatingFactor> f_heat;
   /// \f$ v_{\rm sig,ij} \f$ of Monaghan (1997) when the time step asks for it (else no storage).
   [[no_unique_address]] std::conditional_t<with_signal, double, NoSignalVelocity> signal;

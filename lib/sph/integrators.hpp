@@ -6,8 +6,9 @@
 /// An integrator is a policy the scene names.  It owns the buffers it needs and advances the
 /// particles by one step dt through the simulation's interface for integrators:
 /// `particles()`, `moves(i)` (fixed boundary particles do not), `drifted(i, v)` (wrap into the
-/// box, apply the boundaries' constraint to the position and to v, the velocity that carries on), `kicked(i, dt, v_before, v, u)` (the terms' own
-/// updates of v and u at a kick, when `Sim::kicks_terms`) and `evaluate()` (every pass of the step at the current state).  Both
+/// box, apply the boundaries' constraint to the position and to v, the velocity that carries on),
+/// `kicked(i, dt, v_before, v, u)` (the terms' own updates of v and u at a kick, when
+/// `Sim::kicks_terms`) and `evaluate()` (every pass of the step at the current state).  Both
 /// integrators evaluate the accelerations once per step, so they cost the same.
 
 #include "sph/dimension.hpp"
@@ -38,8 +39,9 @@ namespace sph {
 ///  - the pair forces' heating \f$ \dot u_i \f$ was computed at the last evaluation with the
 ///    velocities before the terms changed them by \f$ \delta\mathbf v_i \f$ at the closing kick;
 ///    the kinetic energy the same forces give at the next opening kick counts the velocity
-///    after.  The difference, \f$ m_i\,\delta\mathbf v_i\cdot\mathbf a^{\rm hydro}_i\,\delta t/2 \f$
-///    summed over the particles, is what the pair forces' own energy equation
+///    after.  The difference,
+///    \f$ m_i\,\delta\mathbf v_i\cdot\mathbf a^{\rm hydro}_i\,\delta t/2 \f$ summed over the
+///    particles, is what the pair forces' own energy equation
 ///    (\f$ \sum_i m_i \dot u_i = -\sum_i m_i \mathbf v_i\cdot\mathbf a^{\rm hydro}_i \f$) did not
 ///    see; it is taken from \f$ u_i \f$.
 ///  - gravity and the external potential gave kinetic energy at the opening kick to the velocity
@@ -135,7 +137,8 @@ struct Leapfrog {
 ///     u^* = u^n + \tfrac12\delta t\,\dot u^{n-1/2}; \f]
 /// \f[ \text{evaluate}\quad \mathbf a^{n+1/2} = \mathbf a(\mathbf r^*, \mathbf v^*, u^*); \f]
 /// \f[ \text{correct:}\quad \mathbf v^{n+1} = \mathbf v^n + \delta t\,\mathbf a^{n+1/2},\quad
-///     \mathbf r^{n+1} = \mathbf r^n + \delta t\,(\mathbf v^n + \tfrac12\delta t\,\mathbf a^{n+1/2}),\quad
+///     \mathbf r^{n+1} = \mathbf r^n
+///       + \delta t\,(\mathbf v^n + \tfrac12\delta t\,\mathbf a^{n+1/2}),\quad
 ///     u^{n+1} = u^n + \delta t\,\dot u^{n+1/2}. \f]
 /// The predictor uses the accelerations of the previous step's midpoint, which are
 /// \f$ O(\delta t) \f$ off the ones at \f$ t^n \f$; the predicted state is then

@@ -5,14 +5,16 @@
 /// For particles \f$ i \f$ in a selection \f$ \mathcal S \f$ of size \f$ N \f$, with values
 /// \f$ f_i \f$ and a reference \f$ f_\mathrm{ref}(\mathbf x) \f$,
 /// \f[ L_1 = \frac1N \sum_{i\in\mathcal S} |f_i - f_\mathrm{ref}(\mathbf x_i)|, \qquad
-///     L_2 = \Big(\frac1N \sum_{i\in\mathcal S} (f_i - f_\mathrm{ref}(\mathbf x_i))^2\Big)^{1/2}, \qquad
+///     L_2 = \Big(\frac1N \sum_{i\in\mathcal S}
+///           (f_i - f_\mathrm{ref}(\mathbf x_i))^2\Big)^{1/2}, \qquad
 ///     L_\infty = \max_{i\in\mathcal S} |f_i - f_\mathrm{ref}(\mathbf x_i)| . \f]
 /// These are particle averages, not volume integrals: for equal-mass particles they weight each
 /// region by its mass, which is the usual convention for SPH shock tubes.
 ///
 /// The relative scatter in a region,
 /// \f[ \sigma_\mathrm{rel} = \Big(\frac1N \sum_{i\in\mathcal S}
-///     \Big(\frac{f_i - f_\mathrm{ref}(\mathbf x_i)}{f_\mathrm{ref}(\mathbf x_i)}\Big)^2\Big)^{1/2}, \f]
+///     \Big(\frac{f_i - f_\mathrm{ref}(\mathbf x_i)}{f_\mathrm{ref}(\mathbf x_i)}\Big)^2
+///     \Big)^{1/2}, \f]
 /// is the measure behind Watkins et al. (1996) section 4.3: "velocity scatter about the exact
 /// solution" in the shocked region of the Monaghan & Gingold tube, ≈ 15 % with artificial
 /// viscosity and ≈ 11 % with their Navier-Stokes bulk viscosity.

@@ -2,7 +2,8 @@
 /// \file
 /// \brief What a pair function sees: the geometry and kinematics of one interacting pair.
 ///
-/// Sign conventions (Selhammar eq 4 read with the sign of his eq 6): \f$ \mathbf r_{ij} = \mathbf r_i - \mathbf r_j \f$,
+/// Sign conventions (Selhammar eq 4 read with the sign of his eq 6):
+/// \f$ \mathbf r_{ij} = \mathbf r_i - \mathbf r_j \f$,
 /// \f$ \mathbf v_{ij} = \mathbf v_i - \mathbf v_j \f$; the pair approaches when
 /// \f$ \mathbf r_{ij}\cdot\mathbf v_{ij} < 0 \f$.  The kernel is evaluated at the mean smoothing
 /// length \f$ \bar h_{ij} = (h_i + h_j)/2 \f$ (Selhammar eq 1, Watkins eq A4), so

@@ -7,7 +7,7 @@
 /// own state, so a scene that does not choose it does not allocate them.
 ///
 /// Passes, in order (after SWIFT's `hydro.h`):
-///   smoothing lengths + neighbour list  ->  density  ->  equation of state  ->  force  ->  kick/drift.
+///   smoothing lengths + neighbour list -> density -> equation of state -> force -> kick/drift.
 
 #include "sph/dimension.hpp"
 #include "sph/error.hpp"

@@ -14,10 +14,10 @@
 ///     \nabla_i W(r_{ij}, \bar h_{ij}), \f]
 /// is (for a fixed common h and equal masses) exactly \f$ -\nabla_i E / m_i \f$ for the energy
 /// \f$ E = \sum_i m_i u(\rho_i) \f$ with \f$ du/d\rho = P/\rho^2 \f$.  Since
-/// \f$ m_i \approx \rho_i\,\Delta V_i \f$, E approximates \f$ \int \rho\, u(\rho)\, dV \f$, a convex
-/// functional of \f$ \rho \f$ for any \f$ \gamma > 0 \f$ (\f$ \rho\ln\rho \f$ for the isothermal
-/// \f$ \gamma = 1 \f$, \f$ \rho^2 \f$ for \f$ \gamma = 2 \f$): at fixed total mass it is smallest when
-/// the density is uniform.
+/// \f$ m_i \approx \rho_i\,\Delta V_i \f$, E approximates \f$ \int \rho\, u(\rho)\, dV \f$, a
+/// convex functional of \f$ \rho \f$ for any \f$ \gamma > 0 \f$ (\f$ \rho\ln\rho \f$ for the
+/// isothermal \f$ \gamma = 1 \f$, \f$ \rho^2 \f$ for \f$ \gamma = 2 \f$): at fixed total mass it is
+/// smallest when the density is uniform.
 ///
 /// Larger \f$ \gamma \f$ makes the pressure stiffer against over-densities and gives a smaller
 /// final scatter (chapter 2 compares \f$ \gamma = 1, 2, 3 \f$).
@@ -45,8 +45,9 @@
 /// and stop when it has not improved by a relative `min_improvement` in `patience` iterations:
 /// the distribution has settled into a glass whose remaining scatter no longer falls at a useful
 /// rate.  Descent on E is not descent on the scatter: near the end the scatter can creep up again
-/// while E still falls, so we return the positions with the smallest scatter seen.  The result is deterministic for a given
-/// start (the neighbour list and all sums are independent of the thread count).
+/// while E still falls, so we return the positions with the smallest scatter seen.  The result is
+/// deterministic for a given start (the neighbour list and all sums are independent of the
+/// thread count).
 
 #include "sph/box.hpp"
 #include "sph/density.hpp"
@@ -72,7 +73,8 @@ struct DensityScatter {
   double relative = 0;  ///< \f$ \sigma_\rho / \bar\rho \f$
 };
 
-/// Mean and standard deviation of the densities (Watkins' \f$ \bar\rho \f$ and \f$ \sigma_\rho \f$).
+/// Mean and standard deviation of the densities (Watkins' \f$ \bar\rho \f$ and
+/// \f$ \sigma_\rho \f$).
 inline DensityScatter density_scatter(const std::vector<double>& density) {
   require(!density.empty(), "density scatter: no densities");
   double sum = 0;

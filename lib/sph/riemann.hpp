@@ -12,7 +12,8 @@
 ///     \f[ f(p) = f_L(p) + f_R(p) + (u_R - u_L) = 0, \qquad
 ///         f_K(p) = \begin{cases}
 ///           (p - p_K)\sqrt{\dfrac{A_K}{p + B_K}} & p > p_K \text{ (shock)}\\[1ex]
-///           \dfrac{2 c_K}{\gamma - 1}\left[\left(\dfrac{p}{p_K}\right)^{\frac{\gamma-1}{2\gamma}} - 1\right]
+///           \dfrac{2 c_K}{\gamma - 1}
+///             \left[\left(\dfrac{p}{p_K}\right)^{\frac{\gamma-1}{2\gamma}} - 1\right]
 ///             & p \le p_K \text{ (rarefaction)}
 ///         \end{cases} \f]
 ///     with \f$ A_K = 2/((\gamma+1)\rho_K) \f$, \f$ B_K = p_K(\gamma-1)/(\gamma+1) \f$;

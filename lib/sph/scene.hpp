@@ -9,7 +9,8 @@
 ///     struct Sod : sph::Scene<D> {
 ///       using Terms = sph::Terms<sph::PressureHernquistKatz, sph::MonaghanGingold1983>;
 ///     };
-///     sph::Simulation<Sod<1>> sim(particles, box, sph::IdealGas(1.4), sph::MonaghanGingold1983{1, 2});
+///     sph::Simulation<Sod<1>> sim(particles, box, sph::IdealGas(1.4),
+///                                 sph::MonaghanGingold1983{1, 2});
 ///
 /// | part | default | what it decides |
 /// |:--|:--|:--|

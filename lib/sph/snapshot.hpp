@@ -22,7 +22,7 @@
 /// # 1  dimensions
 /// # 2.0000000000000001e-01  time
 /// # 1.3999999999999999e+00  gamma
-/// # [01           x]   [02          vx]   [03        mass]   [04           h]   [05     density]   [06           u]   [07    pressure]
+/// # [01           x]   [02          vx]   [03        mass]   [04           h]   ...
 ///   -4.9888888888888888e-01  ...
 /// \endverbatim
 /// `npart` and `dimensions` come before the time on purpose: they have no decimal point, so

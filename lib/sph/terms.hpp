@@ -38,7 +38,8 @@
 ///
 /// **Who is heated.**  By default the work of a bracket term is shared equally by the pair, the
 /// \f$ \tfrac12 B_{ij} \f$ above.  A term may say otherwise with `heating(pair, view)`, the
-/// factor \f$ H_{ij} \f$ in \f$ \dot u_i \mathrel{+}= m_j H_{ij}\,\mathbf v_{ij}\cdot\nabla_i W_{ij} \f$:
+/// factor \f$ H_{ij} \f$ in
+/// \f$ \dot u_i \mathrel{+}= m_j H_{ij}\,\mathbf v_{ij}\cdot\nabla_i W_{ij} \f$:
 /// energy is still conserved when \f$ H_{ij} + H_{ji} = B_{ij} \f$ (the pressure term whose
 /// particles each do the work of their own pressure, \f$ H_{ij} = P_i/\rho_i^2 \f$, is one).
 

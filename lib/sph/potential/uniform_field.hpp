@@ -1,6 +1,7 @@
 #pragma once
 /// \file
-/// \brief A uniform field of acceleration \f$ \mathbf g \f$: \f$ \Phi = -\mathbf g\cdot\mathbf x \f$.
+/// \brief A uniform field of acceleration \f$ \mathbf g \f$:
+/// \f$ \Phi = -\mathbf g\cdot\mathbf x \f$.
 ///
 /// The body force that drives Watkins et al.'s (1996, sect. 4.1) Poiseuille flow, and gravity
 /// near a surface.  It sets no time step of its own (the acceleration criterion of the step

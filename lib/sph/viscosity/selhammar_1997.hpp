@@ -14,7 +14,8 @@
 /// than sound and faster than the compression of its neighbourhood explains.  In a flow that
 /// compresses at the rate \f$ \dot\rho/\rho \f$, two particles a distance r apart approach at
 /// \f$ (\dot\rho/D\rho)\, r \f$ (eqs 10-11, in D dimensions); only the excess over sound
-/// speed beyond that is penetration.  With \f$ s_{ij} = -\mathbf r_{ij}\cdot\mathbf v_{ij}/r_{ij} \f$
+/// speed beyond that is penetration.  With
+/// \f$ s_{ij} = -\mathbf r_{ij}\cdot\mathbf v_{ij}/r_{ij} \f$
 /// the approach speed (positive when approaching):
 /// \f[ \text{on} \iff s_{ij} > \bar c_{ij} \quad\text{and}\quad
 ///     s_{ij} - \bar c_{ij} > \frac{\bar{\dot\rho}_{ij}}{D\bar\rho_{ij}}\, r_{ij}, \f]

@@ -39,7 +39,8 @@
 /// use for a one-pass Laplacian.  For these two passes it is cautious: a mode of wavenumber k
 /// decays at \f$ \nu k^2 \hat W(k)^2 \f$, at most \f$ 1.2\,\nu/h^2 \f$ for M4 (at
 /// \f$ kh \approx 1.8 \f$), so an explicit step is stable up to about \f$ 1.7\, h^2/\nu \f$.  The
-/// other side of the same fact: modes at the particle scale are hardly damped at all (\f$ \hat W \to 0 \f$).
+/// other side of the same fact: modes at the particle scale are hardly damped at all
+/// (\f$ \hat W \to 0 \f$).
 
 #include "sph/derivatives/particle_set.hpp"
 #include "sph/fields.hpp"
