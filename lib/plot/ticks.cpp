@@ -118,7 +118,9 @@ std::string mantissa_label(const LogValue& v, bool plain) {
 }
 
 /// Labels at chosen mantissas, for axes spanning about two decades or less.  Returns an empty
-/// set when no mantissa choice gives at least three labels within \p max_labels.
+/// set when no mantissa choice gives at least three labels within \p max_labels that spread
+/// over at least half the axis (0.08, 0.09, 0.1 on an axis to 0.17 leave its upper half
+/// unlabelled: linear values, 0.08 to 0.16, read better there).
 TickSet mantissa_ticks(double lo, double hi, int max_labels) {
     const std::array<std::vector<int>, 2> choices{std::vector<int>{1, 2, 5},
                                                   std::vector<int>{1, 2, 3, 4, 5, 6, 7, 8, 9}};
@@ -126,6 +128,8 @@ TickSet mantissa_ticks(double lo, double hi, int max_labels) {
         const std::vector<LogValue> labelled = log_values(lo, hi, mantissas);
         const int n = static_cast<int>(labelled.size());
         if (n < 3 || n > max_labels) continue;
+        const double spread = std::log(labelled.back().value() / labelled.front().value());
+        if (spread < 0.5 * std::log(hi / lo)) continue;
         const bool plain = std::all_of(labelled.begin(), labelled.end(), [](const LogValue& v) {
             return v.exponent >= -3 && v.exponent <= 4;
         });

@@ -103,6 +103,15 @@ TEST_CASE("ticks: log axes under two decades label intermediate values", "[plot]
     const auto narrow = labels(plot::make_ticks(Scale::log, 2.1, 2.9, 8));
     CHECK(narrow.size() >= 3);
     CHECK(narrow.front() == "2.2");
+    // Mantissas that would crowd into one end of the axis (0.08, 0.09, 0.1 on an axis to 0.175)
+    // give way to linear values that spread over it.
+    const auto set = plot::make_ticks(Scale::log, 0.078, 0.175, 8);
+    std::vector<double> at;
+    for (const auto& t : set.ticks)
+        if (!t.label.empty()) at.push_back(t.value);
+    REQUIRE(at.size() >= 3);
+    INFO("labels " << at.front() << " to " << at.back());
+    CHECK(std::log(at.back() / at.front()) >= 0.5 * std::log(0.175 / 0.078));
 }
 
 TEST_CASE("colour maps: viridis table and SPLASH red", "[plot][colormap]") {
