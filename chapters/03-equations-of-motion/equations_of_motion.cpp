@@ -213,9 +213,9 @@
 /// output on the results page can be read side by side with the code.
 
 #include "app/chapter.hpp"
-#include "app/equations_of_motion/colliding_streams_figure.hpp"
 #include "app/colliding_streams_run.hpp"
 #include "app/curve_reading.hpp"
+#include "app/equations_of_motion/colliding_streams_figure.hpp"
 #include "app/error_figure.hpp"
 #include "app/figure_lines.hpp"
 #include "app/shock_tube_figure.hpp"

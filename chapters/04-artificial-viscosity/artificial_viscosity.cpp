@@ -122,10 +122,10 @@
 /// returns the numbers the checks at the end need; the figures are written to the output
 /// directory (`--output`) on the way.
 
+#include "app/artificial_viscosity/lattice_sums_figure.hpp"
 #include "app/chapter.hpp"
 #include "app/curve_reading.hpp"
 #include "app/error_figure.hpp"
-#include "app/artificial_viscosity/lattice_sums_figure.hpp"
 #include "app/shock_tube_figure.hpp"
 #include "app/shock_tube_run.hpp"
 #include "app/text.hpp"

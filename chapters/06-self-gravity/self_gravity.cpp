@@ -93,16 +93,17 @@
 /// energy is conserved by construction.
 
 #include "app/chapter.hpp"
+#include "app/curve_reading.hpp"
 #include "app/error_figure.hpp"
+#include "app/particle_measures.hpp"
 #include "app/self_gravity/evrard_figures.hpp"
 #include "app/self_gravity/evrard_reference.hpp"
 #include "app/self_gravity/evrard_run.hpp"
 #include "app/self_gravity/free_fall_figure.hpp"
 #include "app/self_gravity/gravity_alone.hpp"
 #include "app/self_gravity/radial_profile.hpp"
-#include "app/recorded_series.hpp"
-#include "app/text.hpp"
 #include "app/self_gravity/tree_figures.hpp"
+#include "app/text.hpp"
 #include "plot/figure.hpp"
 #include "sph/convergence.hpp"
 #include "sph/diagnostics.hpp"
@@ -595,8 +596,8 @@ void step2_cost_against_n(const app::Chapter& chapter, const Parameters& par, Tr
 ///
 /// **Measuring a shell.**  The particles have equal masses, so the radius of the shell holding a
 /// fraction f of the mass is that of the particle at rank \f$ f(N-1) \f$ when the particles are
-/// sorted by radius (`app::shell_radius`).  We record it after every step, as \f$ r/r_0 \f$,
-/// beside the analytic value, and keep the largest relative error up to 0.9
+/// sorted by radius (`app::radius_holding` about the origin).  We record it after every step, as
+/// \f$ r/r_0 \f$, beside the analytic value, and keep the largest relative error up to 0.9
 /// \f$ t_\mathrm{ff} \f$, where the check is made.
 
 // The analytic r/r0 of the cold collapse at time t (in units where sqrt(2GM/R^3) = 1/tau).
@@ -632,7 +633,7 @@ FreeFallResult step3_free_fall(const app::Chapter& chapter, const Parameters& pa
   sph::Simulation<FreeFall> sim(p, sph::Box<3>::open(), gravity, settings);
   const double fractions[] = {0.1, 0.5, 0.75};
   double r0[3];
-  for (int k = 0; k < 3; ++k) r0[k] = app::shell_radius(p, fractions[k]);
+  for (int k = 0; k < 3; ++k) r0[k] = app::radius_holding(p, fractions[k], Vec3::Zero());
   app::FreeFallHistory history;
   auto& t = history.t;
   auto& exact = history.exact;
@@ -643,7 +644,7 @@ FreeFallResult step3_free_fall(const app::Chapter& chapter, const Parameters& pa
     t.push_back(s.time() / t_ff);
     exact.push_back(free_fall_ratio(s.time(), tau));
     for (int k = 0; k < 3; ++k) {
-      ratio[k].push_back(app::shell_radius(s.particles(), fractions[k]) / r0[k]);
+      ratio[k].push_back(app::radius_holding(s.particles(), fractions[k], Vec3::Zero()) / r0[k]);
       if (t.back() <= 0.9 + 1e-9)
         result.worst = std::max(result.worst, std::abs(ratio[k].back() / exact.back() - 1));
     }

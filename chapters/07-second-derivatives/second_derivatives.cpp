@@ -739,7 +739,7 @@ TermStudy viscosity_term(const Sets<3>& sets) {
   }
   r.rms = std::sqrt(ss / static_cast<double>(b.size())) / scale;
   r.max /= scale;
-  r.net_force = net_force_fraction(b.mass, visc);
+  r.net_force = app::net_force_fraction(b.mass, visc);
   // the stand-alone operators on the step's own densities and neighbour list
   const dv::ParticleSet<3> set(b, viscous.neighbours(), viscous.box());
   const std::vector<Vec<3>> v(b.velocity.begin(), b.velocity.end());
@@ -750,7 +750,7 @@ TermStudy viscosity_term(const Sets<3>& sets) {
     r.operators = std::max(r.operators, (visc[i] - ops).norm() / scale);
   }
   // Flebbe's force on the same field, for comparison
-  r.net_force_flebbe = net_force_fraction(
+  r.net_force_flebbe = app::net_force_fraction(
       b.mass, dv::flebbe::viscous_acceleration(set, std::span<const Vec<3>>(v), mu_s, mu_b));
   std::tie(r.seconds_pressure, r.seconds_viscous) =
       alternating_medians([&] { pressure.evaluate(); }, [&] { viscous.evaluate(); });

@@ -31,6 +31,20 @@ double momentum_drift(const sph::Particles<D>& p, const std::type_identity_t<sph
   return scale > 0 ? (sph::total_momentum(p) - start).norm() / scale : 0.0;
 }
 
+/// The net force of accelerations \p a on particles of masses \p mass, as a fraction of its
+/// scale: \f$ |\sum_i m_i\mathbf a_i| / \sum_i m_i|\mathbf a_i| \f$ (zero for forces that are
+/// equal and opposite pair by pair).
+template <int D>
+double net_force_fraction(const std::vector<double>& mass, const std::vector<sph::Vec<D>>& a) {
+  sph::Vec<D> net = sph::Vec<D>::Zero();
+  double total = 0;
+  for (std::size_t i = 0; i < a.size(); ++i) {
+    net += mass[i] * a[i];
+    total += mass[i] * a[i].norm();
+  }
+  return net.norm() / total;
+}
+
 /// The largest speed \f$ |\mathbf v_i| \f$ of the particles.
 template <int D>
 double peak_speed(const sph::Particles<D>& p) {
@@ -39,16 +53,23 @@ double peak_speed(const sph::Particles<D>& p) {
   return v;
 }
 
-/// The distance from the centre of mass within which the share \p fraction of the particles
-/// lies (the nearest entry of the sorted distances; for particles of equal mass, the radius
+/// The distance from \p centre within which the share \p fraction of the particles lies (the
+/// nearest entry of the sorted distances; for particles of equal mass, the radius of the sphere
 /// that holds that share of the mass).
 template <int D>
-double radius_holding(const sph::Particles<D>& p, double fraction) {
-  const sph::Vec<D> centre = sph::centre_of_mass(p);
+double radius_holding(const sph::Particles<D>& p, double fraction,
+                      const std::type_identity_t<sph::Vec<D>>& centre) {
   std::vector<double> r(p.size());
   for (std::size_t i = 0; i < p.size(); ++i) r[i] = (p.position[i] - centre).norm();
-  std::sort(r.begin(), r.end());
-  return r[static_cast<std::size_t>(fraction * double(r.size() - 1))];
+  const auto k = static_cast<std::size_t>(fraction * double(r.size() - 1));
+  std::nth_element(r.begin(), r.begin() + static_cast<std::ptrdiff_t>(k), r.end());
+  return r[k];
+}
+
+/// The same about the particles' centre of mass.
+template <int D>
+double radius_holding(const sph::Particles<D>& p, double fraction) {
+  return radius_holding(p, fraction, sph::centre_of_mass(p));
 }
 
 /// The median smoothing length of the particles (the upper median for an even count).

@@ -26,6 +26,7 @@
 ///
 /// Header-only, like the other shared pieces of lib/app that use lib/sph.
 
+#include "app/particle_measures.hpp"
 #include "app/stopwatch.hpp"
 #include "plot/figure.hpp"
 #include "sph/derivatives/brookshaw_1985.hpp"
@@ -441,20 +442,6 @@ inline void print_cost_row(const CostRow& r) {
   std::printf("    %7d %6g", r.particles, r.neighbours);
   for (std::size_t k = 0; k < 4; ++k) std::printf("  %8.4f %8.4f", r.rms[k], r.seconds[k]);
   std::printf("\n");
-}
-
-/// The net force of accelerations \p a on particles of masses \p mass, as a fraction of the
-/// total: \f$ |\sum_i m_i\mathbf a_i| / \sum_i m_i|\mathbf a_i| \f$ (zero for a force that
-/// conserves momentum).
-template <int D>
-double net_force_fraction(const std::vector<double>& mass, const std::vector<Vec<D>>& a) {
-  Vec<D> net = Vec<D>::Zero();
-  double total = 0;
-  for (std::size_t i = 0; i < a.size(); ++i) {
-    net += mass[i] * a[i];
-    total += mass[i] * a[i].norm();
-  }
-  return net.norm() / total;
 }
 
 /// The median wall times of two evaluations \p first and \p second, run alternately

@@ -14,7 +14,8 @@
 /// // compare approximate.a[i] with exact.a[i]; read tree.statistics() afterwards
 /// \endcode
 
-#include "app/recorded_series.hpp"
+#include "app/curve_reading.hpp"
+#include "app/particle_measures.hpp"
 #include "app/stopwatch.hpp"
 #include "sph/box.hpp"
 #include "sph/particles.hpp"
@@ -45,13 +46,7 @@ GravityField gravity_alone(G&& gravity, sph::Particles<3> p) {
   GravityField f;
   f.seconds = clock.seconds();
   f.potential_energy = gravity.potential_energy(p, sph::Box<3>::open());
-  sph::Vec<3> net = sph::Vec<3>::Zero();
-  double scale = 0;
-  for (std::size_t i = 0; i < p.size(); ++i) {
-    net += p.mass[i] * p.acceleration[i];
-    scale += p.mass[i] * p.acceleration[i].norm();
-  }
-  f.net_force = net.norm() / scale;
+  f.net_force = net_force_fraction(p.mass, p.acceleration);
   f.a = std::move(p.acceleration);
   return f;
 }

@@ -3,8 +3,8 @@
 /// \brief Radial profiles of a three-dimensional particle set about a centre: every particle's
 /// radius, radial velocity, density and pressure, and their averages in logarithmic bins
 /// (app::radial_profile); the shock on a binned velocity profile (app::find_shock); the binned
-/// profile's errors against a one-dimensional reference (app::profile_errors); and the radius
-/// of a mass shell (app::shell_radius).
+/// profile's errors against a one-dimensional reference (app::profile_errors).  The radius of a
+/// mass shell is app::radius_holding (particle_measures.hpp).
 ///
 /// A spherical problem run in 3D is compared with a 1D calculation through these:
 ///
@@ -14,7 +14,7 @@
 /// const app::ProfileErrors e = app::profile_errors(prof, ref_r, ref_rho, ref_v);
 /// \endcode
 
-#include "app/recorded_series.hpp"
+#include "app/curve_reading.hpp"
 #include "sph/particles.hpp"
 
 #include <algorithm>
@@ -116,15 +116,6 @@ inline ProfileErrors profile_errors(const RadialProfile& prof, const std::vector
     e.v += prof.bin_weight[b] * std::abs(prof.bin_v[b] - interpolate(ref_r, ref_v, r));
   }
   return e;
-}
-
-/// The radius about the origin of the shell holding the fraction \p fraction of the particles
-/// \p p (of equal masses: of the mass), as the nearest particle's radius.
-inline double shell_radius(const sph::Particles<3>& p, double fraction) {
-  std::vector<double> r(p.size());
-  for (std::size_t i = 0; i < p.size(); ++i) r[i] = p.position[i].norm();
-  std::nth_element(r.begin(), r.begin() + std::ptrdiff_t(fraction * double(r.size() - 1)), r.end());
-  return r[static_cast<std::size_t>(fraction * double(r.size() - 1))];
 }
 
 }  // namespace app

@@ -24,7 +24,7 @@
 
 #include "app/particle_measures.hpp"
 #include "app/progress.hpp"
-#include "app/recorded_series.hpp"
+#include "app/curve_reading.hpp"
 #include "app/stopwatch.hpp"
 #include "sph/diagnostics.hpp"
 #include "sph/lagrangian_1d.hpp"
