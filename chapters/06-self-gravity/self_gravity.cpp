@@ -1019,15 +1019,19 @@ struct Extreme {
 
 void collapsed_centre(const Parameters& par, const Collapse& c) {
   std::printf("  the collapsed centre (Step 4's runs):\n");
-  std::printf("    %-10s %10s %7s %9s %10s %-14s %6s\n", "", "peak rho", "at t", "least h",
-              "least dt", "(limited by)", "steps");
+  std::printf("    %-10s %10s %7s %9s %10s %-14s %6s %7s\n", "", "peak rho", "at t", "least h",
+              "least dt", "(limited by)", "steps", "own dt");
   for (const app::EvrardRun* run : {&c.runs[0], &c.runs[1], &c.runs[2]}) {
-    std::printf("    %-10s %10.1f %7.3f %9.2e %10.2e %-14s %6ld\n", run->name.c_str(),
+    std::printf("    %-10s %10.1f %7.3f %9.2e %10.2e %-14s %6ld %6.2fx\n", run->name.c_str(),
                 run->peak_density, run->t_peak, run->least_h, run->least_dt,
-                run->least_dt_criterion.c_str(), run->steps);
+                run->least_dt_criterion.c_str(), run->steps,
+                run->updates / run->individual_updates);
   }
-  std::printf("    (the initial density is 1/(2 pi r): %.1f at the innermost particle)\n",
-              1.0 / (2 * pi * std::sqrt(0.5 / par.particles)));
+  std::printf(
+      "    (the initial density is 1/(2 pi r): %.1f at the innermost particle;\n"
+      "    own dt: how many times fewer particle updates individual time steps in\n"
+      "    power-of-two bins would make, at best)\n",
+      1.0 / (2 * pi * std::sqrt(0.5 / par.particles)));
 }
 
 /// \subsection ch06_cold A colder collapse

@@ -28,7 +28,15 @@ namespace sph {
 // then, so now it is at least R_i - |d_i - d_j| away.  LocalMotion bounds |d_i - d_j| over
 // the particles now near i by b_i, from the displacements in the cells around i; so the
 // candidates are still complete within covered_i = R_i - b_i, and while 2h_i fits in it a
-// step needs only their new distances -- no grid, no search.  The bound looks at
+// step needs only their new distances -- no grid, no search.
+//
+// The cells must hold the reach, but the larger they are, the more motion a bound takes in.
+// Where h spans a wide range -- a collapsed centre inside a sphere fifty times more spread
+// out -- cells sized for the largest reach would bound a central particle's neighbourhood by
+// the motion of the whole core, and it would be searched again at nearly every step.  So the
+// bound is taken on levels of cells, each half the size of the last, from the largest reach
+// down to the least, and each particle reads it on the finest level whose cells hold its
+// reach (`motions_`, at most max_motion_levels).  The bound looks at
 // differences of motion only, and only nearby: the plateau behind a shock, moving as one,
 // keeps its candidates, and so does the gas at rest ahead of it.
 //
@@ -49,14 +57,26 @@ inline bool NeighbourSearch<D, K>::try_reuse(Particles<D>& p, const Box<D>& box,
     return false;
   double largest_h = 0;
   if (!advance_frame(p, box, largest_h)) return false;
-  // How far each particle's neighbourhood has moved relative to it.
+  // How far each particle's neighbourhood has moved relative to it, on cells about as large
+  // as its reach (see the note above).
   std::array<const double*, D> moved;
   for (int a = 0; a < D; ++a) moved[a] = moved_[a].data();
-  motion_.build(p.position, box, moved, K::support * largest_h * (1.0 + search_margin));
-  const double cell = motion_.cell_size();
+  const double largest_reach = K::support * largest_h * (1.0 + search_margin);
+  const double least_reach = *std::min_element(reach_.begin(), reach_.end());
+  int levels = 1;
+  while (levels < max_motion_levels && std::ldexp(largest_reach, -levels) >= least_reach) ++levels;
+  if (motions_.size() < static_cast<std::size_t>(levels))
+    motions_.resize(static_cast<std::size_t>(levels));
+  for (int l = 0; l < levels; ++l)
+    motions_[static_cast<std::size_t>(l)].build(p.position, box, moved,
+                                                std::ldexp(largest_reach, -l));
   covered_.resize(n);
 #pragma omp parallel for schedule(static) if (n >= parallel_threshold)
-  for (std::size_t i = 0; i < n; ++i) covered_[i] = std::min(reach_[i], cell) - motion_.bound(i);
+  for (std::size_t i = 0; i < n; ++i) {
+    int l = levels - 1;  // the finest level whose cells hold the reach (else the coarsest)
+    while (l > 0 && motions_[l].cell_size() < reach_[i]) --l;
+    covered_[i] = std::min(reach_[i], motions_[l].cell_size()) - motions_[l].bound(i);
+  }
   // Settle every particle from its candidates; flag the ones to search again.
   const PositionView<D> unwrapped = unwrapped_view();
   search_again_.resize(n);
@@ -85,7 +105,7 @@ inline bool NeighbourSearch<D, K>::try_reuse(Particles<D>& p, const Box<D>& box,
     ++reuses_;
   }
   // (every h is final now: the smallest near each particle tells which may hand pairs over)
-  motion_.neighbourhood_min(p.smoothing_length.data(), h_floor_);
+  motions_[0].neighbourhood_min(p.smoothing_length.data(), h_floor_);
   finish_list(p, box, failed ? Kept::all_but_searched : Kept::all, &h_floor_);
   return true;
 }

@@ -458,7 +458,10 @@ class NeighbourSearch {
   std::vector<Image>
       wrapped_;  // periods between unwrapped and stored position, packed like an image
   bool any_wrapped_ = false;
-  LocalMotion<D> motion_;
+  // The bound of local motion on cells from the largest reach down, each level half the last
+  // (see try_reuse); 8 levels span a factor of 128 in h.
+  static constexpr int max_motion_levels = 8;
+  std::vector<LocalMotion<D>> motions_;
   std::vector<double> h_floor_;    // the smallest h near each particle (find_reverse)
   std::vector<double> farthest2_;  // the largest r_ij^2 among each particle's kept pairs
   long searches_ = 0, full_searches_ = 0, reuses_ = 0, particle_searches_ = 0;

@@ -52,6 +52,7 @@
 #include <limits>
 #include <string>
 #include <type_traits>
+#include <vector>
 
 namespace sph {
 
@@ -162,65 +163,42 @@ class Simulation {
   /// The time step allowed by every criterion now (without the output-time clamp).
   TimestepLimit allowed_timestep() const {
     if (settings_.fixed_timestep > 0) return {"fixed step", 0, settings_.fixed_timestep};
-    const auto& p = particles_;
-    const std::size_t n = p.size();
+    const std::size_t n = particles_.size();
     // Each chunk of particles finds its smallest step, then the chunks are compared in order
     // (a tie goes to the lower index): the same answer for any number of threads.
     constexpr std::size_t chunk = 4096;
-    struct Best {
-      double dt = std::numeric_limits<double>::infinity();
-      std::size_t particle = 0;
-      const char* criterion = "none";
-    };
-    std::vector<Best> best((n + chunk - 1) / chunk);
+    std::vector<Limit> best((n + chunk - 1) / chunk);
     const ParticleView<D> in = view();
-    const double courant = settings_.courant;
-    const bool pair_signal = this->pair_signal();
 #pragma omp parallel for schedule(static) if (n >= parallel_threshold)
     for (std::size_t c = 0; c < best.size(); ++c) {
-      Best b;
-      const auto consider = [&b](double dt, std::size_t i, const char* name) {
-        if (dt < b.dt) b = {dt, i, name};
-      };
       for (std::size_t i = c * chunk; i < std::min(n, (c + 1) * chunk); ++i) {
         if (!moves(i)) continue;
-        if constexpr (hydro) {
-          const double h = p.smoothing_length[i];
-          if (pair_signal) {
-            const double signal = std::max(fields_.max_signal[i], 2.0 * p.sound_speed[i]);
-            if (signal > 0) consider(courant * h / signal, i, "signal velocity");
-          } else {
-            double signal = p.sound_speed[i];
-            terms_.for_each([&](const auto& t) {
-              if constexpr (HasSignalSpeed<std::decay_t<decltype(t)>, D>)
-                signal += t.signal_speed(i, in);
-            });
-            signal += p.velocity[i].norm();
-            if (signal > 0) consider(courant * h / signal, i, "Courant (eq 7)");
-          }
-          const double a = p.acceleration[i].norm();
-          if (a > 0) consider(courant * std::sqrt(h / a), i, "acceleration");
-          // Cooling: an explicit step must not remove more than a fraction of u (without it,
-          // an inviscid collision can drive u negative in one step; chapter 3).
-          if constexpr (evolve_energy) {
-            if (p.energy_rate[i] < 0 && p.internal_energy[i] > 0)
-              consider(courant * p.internal_energy[i] / -p.energy_rate[i], i, "cooling");
-          }
-          terms_.for_each([&](const auto& t) {
-            using T = std::decay_t<decltype(t)>;
-            if constexpr (HasTimestep<T, D>) consider(t.timestep(i, in), i, T::timestep_name);
-          });
-        }
-        if constexpr (External::active)
-          consider(external_.timestep(p.position[i], courant), i, External::timestep_name);
+        const Limit limit = particle_limit(i, in);
+        if (limit.dt < best[c].dt) best[c] = limit;
       }
-      best[c] = b;
     }
-    Best overall;
-    for (const Best& b : best) {
+    Limit overall;
+    for (const Limit& b : best) {
       if (b.dt < overall.dt) overall = b;
     }
     return {overall.criterion, overall.particle, overall.dt};
+  }
+
+  /// The step each particle alone allows now: the smallest of the limits in the file comment
+  /// for that particle (infinite for one that does not move or that no limit applies to).
+  /// The global step is the least of them; a scheme of individual time steps would give each
+  /// particle its own (chapter 6 measures what that would save).
+  void particle_timesteps(std::vector<double>& dt) const {
+    if (settings_.fixed_timestep > 0) {
+      dt.assign(particles_.size(), settings_.fixed_timestep);
+      return;
+    }
+    const std::size_t n = particles_.size();
+    dt.resize(n);
+    const ParticleView<D> in = view();
+#pragma omp parallel for schedule(static) if (n >= parallel_threshold)
+    for (std::size_t i = 0; i < n; ++i)
+      dt[i] = moves(i) ? particle_limit(i, in).dt : std::numeric_limits<double>::infinity();
   }
 
   /// One step of the scene's integrator, of at most dt_max; returns the step taken.
@@ -360,6 +338,53 @@ class Simulation {
   // Whether the time step is the signal-velocity rule, whose pair maximum the force pass keeps.
   bool pair_signal() const {
     return settings_.timestep_rule == Settings::TimestepRule::signal_velocity;
+  }
+
+  // The least step of particle i's criteria (particle_timestep, without the string).
+  struct Limit {
+    double dt = std::numeric_limits<double>::infinity();
+    std::size_t particle = 0;
+    const char* criterion = "none";
+    void consider(double step, const char* name) {
+      if (step < dt) dt = step, criterion = name;
+    }
+  };
+  Limit particle_limit(std::size_t i, const ParticleView<D>& in) const {
+    const auto& p = particles_;
+    Limit limit;
+    limit.particle = i;
+    if constexpr (hydro) {
+      const double courant = settings_.courant;
+      const double h = p.smoothing_length[i];
+      if (pair_signal()) {
+        const double signal = std::max(fields_.max_signal[i], 2.0 * p.sound_speed[i]);
+        if (signal > 0) limit.consider(courant * h / signal, "signal velocity");
+      } else {
+        double signal = p.sound_speed[i];
+        terms_.for_each([&](const auto& t) {
+          if constexpr (HasSignalSpeed<std::decay_t<decltype(t)>, D>)
+            signal += t.signal_speed(i, in);
+        });
+        signal += p.velocity[i].norm();
+        if (signal > 0) limit.consider(courant * h / signal, "Courant (eq 7)");
+      }
+      const double a = p.acceleration[i].norm();
+      if (a > 0) limit.consider(courant * std::sqrt(h / a), "acceleration");
+      // Cooling: an explicit step must not remove more than a fraction of u (without it,
+      // an inviscid collision can drive u negative in one step; chapter 3).
+      if constexpr (evolve_energy) {
+        if (p.energy_rate[i] < 0 && p.internal_energy[i] > 0)
+          limit.consider(courant * p.internal_energy[i] / -p.energy_rate[i], "cooling");
+      }
+      terms_.for_each([&](const auto& t) {
+        using T = std::decay_t<decltype(t)>;
+        if constexpr (HasTimestep<T, D>) limit.consider(t.timestep(i, in), T::timestep_name);
+      });
+    }
+    if constexpr (External::active) {
+      limit.consider(external_.timestep(p.position[i], settings_.courant), External::timestep_name);
+    }
+    return limit;
   }
 
   // --- parts by type -------------------------------------------------------------------------

@@ -9,7 +9,9 @@
 
 #include <catch2/catch.hpp>
 
+#include <algorithm>
 #include <cmath>
+#include <vector>
 
 namespace {
 
@@ -126,4 +128,31 @@ TEST_CASE("the signal-velocity rule refuses a negative beta", "[timestep]") {
   const auto box = sph::Box<1>::periodic_box(sph::Vec<1>(0.0), sph::Vec<1>(1.0));
   CHECK_THROWS_WITH((sph::Simulation<ViscousGas1>(p, box, settings)),
                     Catch::Contains("signal velocity's beta"));
+}
+
+TEST_CASE("each particle's own step: the global step is the least of them", "[timestep]") {
+  // Sod's tube after a few steps, both rules: the particles' own steps differ (the dense side
+  // has a smaller h, the shock a larger signal speed), and the global step is their minimum,
+  // to the bit, with the criterion of the particle that sets it.
+  for (const Rule rule : {Rule::selhammar_eq7, Rule::signal_velocity}) {
+    sph::ShockTubeSetup setup = sph::ShockTubeSetup::sod();
+    setup.left_spacing = 1.0 / 200;
+    const auto smoothing = sph::SmoothingLengthRule::from_density(4);
+    sph::ShockTube<1> tube = sph::make_shock_tube<1>(setup, smoothing);
+    sph::Settings settings;
+    settings.smoothing = smoothing;
+    settings.timestep_rule = rule;
+    sph::Simulation<ViscousGas1> sim(tube.particles, tube.box, sph::IdealGas(1.4),
+                                     sph::MonaghanGingold1983(1, 2), settings);
+    for (int k = 0; k < 20; ++k) sim.step();
+    std::vector<double> own;
+    sim.particle_timesteps(own);
+    REQUIRE(own.size() == sim.particles().size());
+    const auto least = std::min_element(own.begin(), own.end());
+    const sph::TimestepLimit global = sim.allowed_timestep();
+    CHECK(*least == global.dt);
+    CHECK(static_cast<std::size_t>(least - own.begin()) == global.particle);
+    // the steps spread: the largest is well above the least
+    CHECK(*std::max_element(own.begin(), own.end()) > 1.5 * *least);
+  }
 }

@@ -96,18 +96,23 @@ struct DirectGravity {
     if (fixed_softening > 0) fixed.assign(n, fixed_softening);
     const double* h = fixed_softening > 0 ? fixed.data() : p.smoothing_length.data();
     const double* m = p.mass.data();
+    // (1/h once per particle: a pair then costs one division, 1/r; see softening.hpp)
+    std::vector<double> inverse_h(n);
+    for (std::size_t j = 0; j < n; ++j) inverse_h[j] = 1.0 / h[j];
+    const double* inv_h = inverse_h.data();
 #pragma omp parallel for schedule(dynamic, 64) if (n >= 256)
     for (std::size_t i = 0; i < n; ++i) {
       double ax = 0, ay = 0, az = 0, phi = 0;
-      const double hi = h[i];
+      const double inv_hi = inv_h[i];
       for (std::size_t j = 0; j < n; ++j) {
         const double dx = xs[i] - xs[j], dy = ys[i] - ys[j], dz = zs[i] - zs[j];
         const double r = std::sqrt(dx * dx + dy * dy + dz * dz);
-        const double f = m[j] * gravity::pair_force_over_r(r, hi, h[j]);
+        const gravity::Softened pair = gravity::pair_softened(r, inv_hi, inv_h[j]);
+        const double f = m[j] * pair.force_over_r;
         ax -= f * dx;
         ay -= f * dy;
         az -= f * dz;
-        phi += m[j] * gravity::pair_potential(r, hi, h[j]);
+        phi += m[j] * pair.potential;
       }
       p.acceleration[i] += G * Vec<D>(ax, ay, az);
       potential_[i] = G * phi;

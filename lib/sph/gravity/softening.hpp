@@ -38,35 +38,57 @@ namespace sph::gravity {
 /// The support of the softened kernel in units of h: Newtonian from r = 2h on.
 inline constexpr double softening_support = 2.0;
 
+/// \f$ \phi'(r, h)/r \f$ and \f$ \phi(r, h) \f$ of one kernel.
+struct Softened {
+  double force_over_r;
+  double potential;
+};
+
+/// Both for the M4 kernel, from r, 1/r and 1/h (1/r may be infinite at r = 0: the inner
+/// piece, the only one used there, does not read it).  The outer piece's terms in 1/q are
+/// written with 1/r -- \f$ h^{-3}/(15q^3) = 1/(15r^3) \f$, \f$ h^{-1}/(15q) = 1/(15r) \f$ --
+/// so that a pair costs one division, 1/r, when the 1/h of both particles are known: the
+/// tree's near field and direct summation evaluate this for every pair within a kernel's
+/// support, several pairs at a time (a division is the slowest operation of the pair).
+inline Softened m4_softened(double r, double inv_r, double inv_h) {
+  const double q = r * inv_h, q2 = q * q;
+  const double inv_r3 = inv_r * inv_r * inv_r, inv_h3 = inv_h * inv_h * inv_h;
+  if (q >= 2.0) return {inv_r3, -inv_r};
+  if (q < 1.0) {
+    return {inv_h3 * (4.0 / 3.0 - 1.2 * q2 + 0.5 * q2 * q),
+            inv_h * (2.0 / 3.0 * q2 - 0.3 * q2 * q2 + 0.1 * q2 * q2 * q - 1.4)};
+  }
+  // (8/3 q - 3 q^2 + 6/5 q^3 - 1/6 q^4 - 1/(15 q^2)) / q and the potential's piece
+  return {
+      inv_h3 * (8.0 / 3.0 - 3.0 * q + 1.2 * q2 - q2 * q / 6.0) - inv_r3 / 15.0,
+      inv_h * (4.0 / 3.0 * q2 - q2 * q + 0.3 * q2 * q2 - q2 * q2 * q / 30.0 - 1.6) + inv_r / 15.0};
+}
+
 /// \f$ \phi'(r, h)/r \f$ for the M4 kernel, any r >= 0: \f$ 1/r^3 \f$ beyond 2h.
 inline double m4_force_over_r(double r, double h) {
-  const double inv_h = 1.0 / h;
-  const double q = r * inv_h;
-  if (q >= 2.0) return 1.0 / (r * r * r);
-  const double inv_h3 = inv_h * inv_h * inv_h;
-  if (q < 1.0) return inv_h3 * (4.0 / 3.0 - 1.2 * q * q + 0.5 * q * q * q);
-  // (8/3 q - 3 q^2 + 6/5 q^3 - 1/6 q^4 - 1/(15 q^2)) / q
-  return inv_h3 * (8.0 / 3.0 - 3.0 * q + 1.2 * q * q - q * q * q / 6.0 - 1.0 / (15.0 * q * q * q));
+  return m4_softened(r, 1.0 / r, 1.0 / h).force_over_r;
 }
 
 /// \f$ \phi(r, h) \f$ for the M4 kernel, any r >= 0: \f$ -1/r \f$ beyond 2h, \f$ -1.4/h \f$ at 0.
 inline double m4_potential(double r, double h) {
-  const double inv_h = 1.0 / h;
-  const double q = r * inv_h;
-  if (q >= 2.0) return -1.0 / r;
-  const double q2 = q * q;
-  if (q < 1.0) return inv_h * (2.0 / 3.0 * q2 - 0.3 * q2 * q2 + 0.1 * q2 * q2 * q - 1.4);
-  return inv_h *
-         (4.0 / 3.0 * q2 - q2 * q + 0.3 * q2 * q2 - q2 * q2 * q / 30.0 - 1.6 + 1.0 / (15.0 * q));
+  return m4_softened(r, 1.0 / r, 1.0 / h).potential;
+}
+
+/// The pair's force factor \f$ \tfrac12[\phi'(r,h_i) + \phi'(r,h_j)]/r \f$ and potential
+/// \f$ \tfrac12[\phi(r,h_i) + \phi(r,h_j)] \f$, from r and both 1/h.
+inline Softened pair_softened(double r, double inv_h_i, double inv_h_j) {
+  const double inv_r = 1.0 / r;
+  const Softened a = m4_softened(r, inv_r, inv_h_i), b = m4_softened(r, inv_r, inv_h_j);
+  return {0.5 * (a.force_over_r + b.force_over_r), 0.5 * (a.potential + b.potential)};
 }
 
 /// The pair's force factor \f$ \tfrac12[\phi'(r,h_i) + \phi'(r,h_j)]/r \f$.
 inline double pair_force_over_r(double r, double h_i, double h_j) {
-  return 0.5 * (m4_force_over_r(r, h_i) + m4_force_over_r(r, h_j));
+  return pair_softened(r, 1.0 / h_i, 1.0 / h_j).force_over_r;
 }
 /// The pair's potential \f$ \tfrac12[\phi(r,h_i) + \phi(r,h_j)] \f$.
 inline double pair_potential(double r, double h_i, double h_j) {
-  return 0.5 * (m4_potential(r, h_i) + m4_potential(r, h_j));
+  return pair_softened(r, 1.0 / h_i, 1.0 / h_j).potential;
 }
 
 }  // namespace sph::gravity

@@ -263,7 +263,7 @@ struct TreeGravity {
     std::vector<std::uint32_t> pt;            // their places in the tree order
     std::vector<std::uint32_t> opened;        // the opened leaves' particles: begin, end
     std::vector<std::uint32_t> softened;      // one particle's pairs within a kernel's support
-    std::vector<double> bx, by, bz, bm, bh;   // and their data side by side
+    std::vector<double> bx, by, bz, bm, bh;   // and their data side by side (bh: 1/h)
     std::vector<std::vector<std::uint32_t>> queue, next;  // candidates, per level of the descent
     std::uint64_t particle_pairs = 0, node_pairs = 0, groups = 0;  // for the statistics
 
@@ -314,6 +314,9 @@ struct TreeGravity {
     if (n == 0) return;
     const auto start = std::chrono::steady_clock::now();
     build(p);
+    // (1/h in tree order: a softened pair then costs one division, 1/r; see softening.hpp)
+    inv_h_.resize(n);
+    for (std::size_t t = 0; t < n; ++t) inv_h_[t] = 1.0 / h_[t];
     const auto built = std::chrono::steady_clock::now();
     walk();
     // Back to the particles' own order.
@@ -781,6 +784,11 @@ struct TreeGravity {
         fphi[l] -= m_r;
         inside[l] = r2 < support2;
       }
+      // (most blocks hold no such pair: the opened leaves' particles lie in tree order, and the
+      // ones within a kernel's reach sit together in a few blocks)
+      int any_inside = 0;
+      for (int l = 0; l < V; ++l) any_inside |= inside[l];
+      if (any_inside == 0) continue;
       for (int l = 0; l < V; ++l) {
         softened[n_softened] = static_cast<std::uint32_t>(k + l);
         n_softened += static_cast<std::size_t>(inside[l]);
@@ -799,18 +807,19 @@ struct TreeGravity {
     for (std::size_t s = 0; s < blocks; ++s) {
       const std::uint32_t j = lists.pt[softened[s < n_softened ? s : 0]];
       bx[s] = x_[j], by[s] = y_[j], bz[s] = z_[j], bm[s] = s < n_softened ? m_[j] : 0.0;
-      bh[s] = h_[j];
+      bh[s] = inv_h_[j];
     }
-    const double x = x_[t], y = y_[t], z = z_[t], h = h_[t];
+    const double x = x_[t], y = y_[t], z = z_[t], inv_h = inv_h_[t];
     double ax[W] = {}, ay[W] = {}, az[W] = {}, phi[W] = {};
     for (std::size_t s = 0; s < blocks; s += W) {
 #pragma omp simd
       for (int l = 0; l < W; ++l) {
         const double dx = x - bx[s + l], dy = y - by[s + l], dz = z - bz[s + l];
         const double r = std::sqrt(dx * dx + dy * dy + dz * dz);
-        const double f = bm[s + l] * gravity::pair_force_over_r(r, h, bh[s + l]);
+        const gravity::Softened pair = gravity::pair_softened(r, inv_h, bh[s + l]);
+        const double f = bm[s + l] * pair.force_over_r;
         ax[l] -= f * dx, ay[l] -= f * dy, az[l] -= f * dz;
-        phi[l] += bm[s + l] * gravity::pair_potential(r, h, bh[s + l]);
+        phi[l] += bm[s + l] * pair.potential;
       }
     }
 
@@ -831,6 +840,7 @@ struct TreeGravity {
   // The particles in tree order, and the particle index of each tree position.
   std::vector<double> x_, y_, z_, m_, h_;
   std::vector<std::uint32_t> index_;
+  std::vector<double> inv_h_;  // 1/h, in tree order
   // The tree's units (see units()): lengths and masses are multiplied by these powers of two
   // before they are rounded to single precision.
   double length_scale_ = 1, mass_scale_ = 1;
