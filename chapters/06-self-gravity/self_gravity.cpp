@@ -494,13 +494,13 @@ TreeStudy step2_tree(const app::Chapter& chapter, const Parameters& par) {
   return study;
 }
 
-/// **Reading the accuracy table.**  On 8192 particles direct summation takes 0.415 s an
+/// **Reading the accuracy table.**  On 8192 particles direct summation takes 0.296 s an
 /// evaluation.  The quadrupole tree at the default \f$ \theta = 0.3 \f$ has a median error of
 /// \f$ 8.39\times10^{-5} \f$, a 99th percentile of \f$ 3.98\times10^{-4} \f$ and a maximum of
 /// \f$ 6.66\times10^{-4} \f$, with 1376 interactions a particle; monopoles at the same angle and
 /// the same interaction count reach \f$ 2.86\times10^{-3} \f$ and \f$ 1.09\times10^{-2} \f$, a
 /// maximum above the stricter target (\f$ 7\times10^{-3} \f$), though within the looser one.  The
-/// quadrupoles cost a tenth more time (0.054 of direct summation's against 0.049) for a 99th
+/// quadrupoles cost a tenth more time (0.060 of direct summation's against 0.053) for a 99th
 /// percentile seven times smaller.  Above \f$ \theta = 0.6 \f$ the interactions stay at 999-1001 a
 /// particle and the maximum error at
 /// \f$ 6.72\times10^{-3} \f$ (quadrupoles) and \f$ 3.29\times10^{-2} \f$ (monopoles): there
@@ -523,12 +523,12 @@ TreeStudy step2_tree(const app::Chapter& chapter, const Parameters& par) {
 /// stays flat if the cost grows as \f$ N \f$ and grows slowly if it grows as
 /// \f$ N\log N \f$.
 ///
-/// In the recorded run direct summation's time grows fourfold at each doubling of N (0.4172 s
-/// at 8192 particles, 1.6357 s at 16384, 6.5738 s at 32768), the tree's about twofold
-/// (0.0249 s, 0.0537 s, 0.1368 s, then 0.2515 s at 65536), so the tree's advantage grows with
-/// N: 16.7 times at 8192 particles, 48.1 at 32768.  Its time per particle rises from 3.04 to
-/// 3.84 microseconds between 8192 and 65536 particles: the \f$ \log N \f$ of the walk.  (The
-/// row of 32768, 4.17, is out of line: the machine was shared while it ran.)
+/// In the recorded run direct summation's time grows fourfold at each doubling of N (0.2342 s
+/// at 8192 particles, 0.9741 s at 16384, 3.9266 s at 32768), the tree's about twofold
+/// (0.0148 s, 0.0332 s, 0.0871 s, then 0.2120 s at 65536), so the tree's advantage grows with
+/// N: 15.8 times at 8192 particles, 45.1 at 32768.  Its time per particle rises from 1.81 to
+/// 3.23 microseconds between 8192 and 65536 particles: the \f$ \log N \f$ of the walk, and
+/// a walk that no longer fits the processor's caches.
 /// Below 4096 particles the ratio is small, and the time per particle higher: the tree runs on
 /// one thread there, and the softened near field is most of such a small sphere.
 
@@ -740,7 +740,7 @@ struct Collapse {
 /// as much as the heights.  In the recorded run the kinetic energy of every run peaks close to
 /// the reference's t = 0.875 (standard 0.870, switch 0.867, modified 0.924), but the thermal
 /// energy does not: the standard viscosity and the switch reach their largest thermal energy
-/// at t = 1.112 and 1.097, after the reference's 1.065, and the modified viscosity at 1.034,
+/// at t = 1.112 and 1.097, after the reference's 1.065, and the modified viscosity at 1.036,
 /// before it.
 
 void print_energy_table(const Collapse& c, const Parameters& par) {
@@ -1014,8 +1014,15 @@ struct Extreme {
 /// particle: the Evrard sphere has \f$ M(r) = r^2 \f$, so the radius holding half a particle's
 /// mass is \f$ r = (2N)^{-1/2} \f$, where \f$ \rho = 1/(2\pi r) \f$ -- 20.4 at 8192 particles.
 /// The standard run's centre is compressed fifteen times beyond that (302.3), the modified
-/// run's ninety times (1823.8).  Every least step in the recorded run is set by the Courant
+/// run's ninety times (1822.3).  Every least step in the recorded run is set by the Courant
 /// condition of eq 7: the denser centre costs steps through its smaller h.
+///
+/// The last column asks what individual time steps would save.  After every step each
+/// particle's own limit -- the same criteria, for it alone (`particle_timesteps` of the
+/// simulation) -- puts it in the largest power-of-two multiple of the least step that it
+/// allows; a particle in bin k would be updated once every \f$ 2^k \f$ global steps.  The
+/// column is the run's particle updates divided by that scheme's: the most it could gain, since
+/// it counts nothing of what such a scheme costs besides.
 
 void collapsed_centre(const Parameters& par, const Collapse& c) {
   std::printf("  the collapsed centre (Step 4's runs):\n");
@@ -1171,20 +1178,20 @@ Extreme step7_extreme(const Parameters& par, const Collapse& c) {
 /// |:--|--:|--:|--:|--:|--:|--:|
 /// | reference | 0.451 | 1.761 | -2.547 | | | |
 /// | standard | 0.344 | 1.469 | -2.215 | 1369 | 8.8e-3 | 1.4e-4 |
-/// | modified | 0.574 | 2.362 | -3.473 | 3163 | 1.4e-2 | 0.37 |
+/// | modified | 0.574 | 2.382 | -3.488 | 3131 | 1.4e-2 | 0.35 |
 /// | switch | 0.375 | 1.517 | -2.289 | 921 | 9.3e-3 | 1.0e-4 |
-/// | standard, softening 0.01 | 0.347 | 1.487 | -2.233 | 1424 | 4.7e-5 | 2.7e-4 |
+/// | standard, softening 0.01 | 0.347 | 1.487 | -2.233 | 1424 | 4.8e-5 | 2.8e-4 |
 ///
 /// (energy change: \f$ |E(3) - E(0)|/|E(0)| \f$; momentum drift: \f$ |\mathbf P(3)| \f$ over
 /// \f$ \sum m|\mathbf v| \f$.)
 ///
 /// Selhammar: "the curves are more shallow" with the standard viscosity.  **Reproduced**: its
-/// largest thermal energy is 1.469 against the modified viscosity's 2.362, its deepest W -2.215
-/// against -3.473.  What the paper does not say, and the reference shows: the exact curves lie
+/// largest thermal energy is 1.469 against the modified viscosity's 2.382, its deepest W -2.215
+/// against -3.488.  What the paper does not say, and the reference shows: the exact curves lie
 /// between the two.  The standard viscosity's are too shallow, by 24 % in
 /// \f$ E_\mathrm{kin} \f$ -- it heats and brakes the gas as it falls, long before the shock
 /// (Fig 6) -- and the modified viscosity's are too deep, by 27 % in \f$ E_\mathrm{kin} \f$
-/// and 36 % in W.  Its collapse goes further than the exact one can: the gas passes through
+/// and 37 % in W.  Its collapse goes further than the exact one can: the gas passes through
 /// the shock without enough dissipation (the restricted term acts only where the approach
 /// exceeds what the compression explains, which in a converging flow near the centre it
 /// rarely does).  Its energy is conserved as the others' are, because the leapfrog pays the
@@ -1218,8 +1225,8 @@ Extreme step7_extreme(const Parameters& par, const Collapse& c) {
 ///
 /// **Error against run time** (`evrard_error_vs_time.png`, t = 0.8).  At 8192 particles
 /// \f$ L_1(\log_{10}\rho) \f$ is 0.100 (standard), 0.084 (modified), 0.081 (switch) and
-/// \f$ L_1(v_r) \f$ 0.164, 0.086, 0.116, in 3.7, 10 and 5.1 s on an idle machine with AVX-512
-/// (the run in `output.txt`, on an AVX2 machine: 9.4, 16 and 8.8 s).  From 1024 to 8192 particles
+/// \f$ L_1(v_r) \f$ 0.164, 0.086, 0.116, in 6.3, 13.8 and 6.8 s (the run in `output.txt`, two
+/// threads of a machine with AVX2).  From 1024 to 8192 particles
 /// the modified viscosity converges at order 0.43 in density, the standard one at 0.71 and the
 /// switch at 0.95.  With `--largest 65536` (16 minutes) the series goes on to 65536 particles,
 /// and the lines part: there \f$ L_1(\log_{10}\rho) \f$ is 0.045 (standard, 91 s), 0.070
@@ -1235,7 +1242,7 @@ Extreme step7_extreme(const Parameters& par, const Collapse& c) {
 /// the best buy of the three.
 ///
 /// **Extreme cases.**  The standard run's centre reaches \f$ \rho = 302 \f$ (1270 times the mean
-/// density), the modified one's 1824, with h down to 0.006 and a step of \f$ 3.8\times10^{-4}
+/// density), the modified one's 1822, with h down to 0.006 and a step of \f$ 3.8\times10^{-4}
 /// \f$; the colder collapse (u = 0.005, 4096 particles) bounces at t = 1.08 with a central
 /// density of 892 and runs on: at this resolution the smoothing length, not the physics, stops
 /// the collapse, far below the \f$ 10^6 \f$ contrast of the continuous problem.  Two particles
@@ -1244,18 +1251,34 @@ Extreme step7_extreme(const Parameters& par, const Collapse& c) {
 /// usual size (maximum \f$ 7\times10^{-4} \f$) and feels \f$ GM/r^2 \f$ to
 /// \f$ 3\times10^{-7} \f$.
 ///
-/// **What it costs.**  At 8192 particles the standard run to t = 3 takes about 50 s on two idle
-/// cores with AVX-512 (1369 steps, 4.1-4.5 microseconds per particle-step, of which the tree
-/// about one); the modified viscosity's takes about 190 s: its denser centre needs 3163 steps,
-/// each about twice the standard's cost.  The whole chapter takes about 6 minutes there, over
-/// the 3 we aim at.  The run in `output.txt` was made on two cores with AVX2 only, whose vector
-/// units are half as wide, and shared with other work: 107 s, 328 s and 11.6 minutes.  Gravity
-/// is not the reason: the bench (`build/bench/bench --only evrard`) times the whole step at
-/// 3.0-3.3 microseconds a particle at 22000 particles, of which the tree is 1.2-1.5.  The
-/// hydrodynamic part costs four times the shock tube's step, because in a collapse a fifth to
-/// three quarters of the particles must search for their neighbours again every step (the
-/// tube: 4 %), over smoothing lengths that span a factor 50.  That is the next thing to make fast.
+/// **What it costs.**  At 8192 particles the standard run to t = 3 takes 75 s in the recorded
+/// run (two threads of a machine with AVX2; 1369 steps, 6.7 microseconds per particle-step),
+/// the modified viscosity's 226 s: its denser centre needs 3131 steps, each 1.3 times the
+/// standard's cost (the collective term's sums).  The whole chapter takes 8 minutes.  The
+/// targets are 60 s and 3 minutes: **not met**.  The benchmark (`build/bench/bench --only
+/// evrard`) times the step at t = 0.8 at 5.8 microseconds a particle with 22000 particles
+/// (7.4 with the modified viscosity), of which the tree is 2.9; the target for the whole step
+/// is 3.  Two things make it as fast as it is.  The tree's near field sums its softened pairs
+/// four at a time in SIMD registers, which a compiler does only when it may compute the M4
+/// kernel's pieces that a pair does not use (the design page says which flag allows it): one
+/// tree evaluation costs 1.81 microseconds a particle at 8192 particles (Step 2), about 1.4
+/// times less than with the pairs one at a time.  And the neighbour search bounds how far a
+/// particle's neighbourhood has moved on cells about as large as its own reach, not the
+/// largest one in the sphere: in the collapsed centre, where h is fifty times smaller than at
+/// the edge, 39 % fewer particles search again from t = 0.8 to 1.2.  Still a fifth of the
+/// particles search again every step at t = 0.8 (the shock tube: 4 %), and the tree sums some
+/// 2000 interactions a particle -- half of them single particles of nearby leaves, too near a
+/// group, or within its softening range, to be summed as multipoles.
 ///
+/// Production codes give each particle its own step, in power-of-two bins.  The column "own dt"
+/// of Step 7 measures what that could save here, at best: 1.9 times fewer particle updates for
+/// the standard run, 2.4 for the modified one, 1.8 for the switch.  Not more, because the
+/// collapse brings most of the mass into the hot centre, where every particle needs the
+/// smallest step; and each step of the smallest bin still drifts every particle and rebuilds
+/// the tree and the neighbour search.  At their best they would bring the standard run to
+/// about 40 s and the modified one to 95 s; the 3 microseconds a particle-step need a cheaper
+/// step as well.
+
 /// \section ch06_try What to try
 ///
 ///  - `--softening 0.01`: every run with the fixed softening length, so that gravity itself
@@ -1282,7 +1305,8 @@ Extreme step7_extreme(const Parameters& par, const Collapse& c) {
 /// methods of Flebbe et al. and Brookshaw, on static fields first.  What this chapter leaves
 /// open: the correction term of Price & Monaghan that would make the softened gravity conserve
 /// energy with a smoothing length tied to the density, and a neighbour search as fast in a
-/// collapsed centre, where h spans a factor of fifty, as it is in a shock tube.  The page
+/// collapsed centre, where h spans a factor of fifty, as it is in a shock tube, and individual
+/// time steps (Step 7 measures what they could save).  The page
 /// \ref papers "Reading the two papers" lists, equation by equation, which chapter implements
 /// what.
 
