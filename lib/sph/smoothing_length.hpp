@@ -38,6 +38,8 @@
 #include <cstdint>
 #include <limits>
 #include <string>
+#include <tuple>
+#include <utility>
 #include <vector>
 
 namespace sph {
@@ -149,6 +151,37 @@ template <class K>
 inline bool settle_on_shell(double target, double shell, double tie, double radius,
                             const CandidateSpan& found, double& h, int& count);
 
+/// settle_by_count's common case: the count within 2h is a few away from N, so the N-th and
+/// (N+1)-th nearest candidates are among the k largest squared distances inside 2h (`below`:
+/// the count is above N) or the k smallest outside it.  One pass keeps those k in a small
+/// sorted array (no copy of a side, no selection over it; the test that picks a side is a
+/// select, not a branch, so it costs no mispredictions) and returns the two squared distances,
+/// the same values a full selection finds.  k must be below `few`, and the side must hold at
+/// least k candidates.
+inline constexpr std::size_t few = 16;
+inline std::pair<double, double> nearest_ranks(const CandidateSpan& found, double reach2,
+                                               bool below, std::size_t k) {
+  // Keys ascending: the squared distances outside, or their negatives inside (so that the
+  // largest inside come first); candidates on the other side get +inf.
+  double best[few] = {};
+  std::size_t m = 0;
+  const double sign = below ? -1.0 : 1.0, none = std::numeric_limits<double>::infinity();
+  for (std::size_t c = 0; c < found.size; ++c) {
+    const double r2 = found.r2[c];
+    const double key = (r2 < reach2) == below ? sign * r2 : none;
+    if (m == k && !(key < best[k - 1])) continue;
+    std::size_t at = m < k ? m++ : k - 1;  // insert, dropping the last when full
+    while (at > 0 && key < best[at - 1]) {
+      best[at] = best[at - 1];
+      --at;
+    }
+    best[at] = key;
+  }
+  // below: best[k-1] is minus the N-th (the least of the k largest), best[k-2] minus the
+  // (N+1)-th; otherwise best[k-2] is the N-th and best[k-1] the (N+1)-th.
+  return below ? std::pair{-best[k - 1], -best[k - 2]} : std::pair{best[k - 2], best[k - 1]};
+}
+
 /// Neighbour-number rule: keep h while the count is within tolerance (or is the count a shell
 /// forced last time, `shell`), else put 2h half-way between the N-th and (N+1)-th nearest
 /// candidate.  False when the candidates do not reach that far (the caller widens the search).
@@ -178,8 +211,13 @@ inline bool settle_by_count(const SmoothingLengthRule& rule, double radius,
       else
         rn12 = std::min(rn12, r2);
     }
+  } else if (const bool below = inside > n;  // both inside 2h, at ranks n and n + 1 there
+             (below ? inside - n : n - inside) < few) {
+    // The count moved by a few (the common case from step to step): the two are among the
+    // few largest distances inside (below) or the few smallest outside, kept in one pass.
+    std::tie(rn2, rn12) =
+        nearest_ranks(found, reach2, below, below ? inside - n + 1 : n - inside + 1);
   } else {
-    const bool below = inside > n;  // both inside 2h, at ranks n and n + 1 there
     side.clear();
     for (std::size_t k = 0; k < found.size; ++k) {
       if ((found.r2[k] < reach2) == below) side.push_back(found.r2[k]);

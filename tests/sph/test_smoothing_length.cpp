@@ -4,7 +4,8 @@
 //    achievable count nearest N, since whole shells of neighbours sit at one distance);
 //  - density: every particle satisfies Watkins' eq A6/A7, rho_i (2 h_i)^D V_D = N m_i, checked
 //    against a brute-force density sum.
-// And the failures: non-convergence, too few particles, N+1 coincident particles.
+// And the failures: non-convergence, too few particles, N+1 coincident particles.  And the
+// one-pass selection of the N-th and (N+1)-th nearest candidates against a full sort.
 #include "sph/density.hpp"
 #include "sph/initial_conditions.hpp"
 
@@ -12,8 +13,11 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstdint>
 #include <map>
 #include <numbers>
+#include <random>
+#include <vector>
 
 namespace {
 
@@ -286,4 +290,39 @@ TEST_CASE("smoothing-length failures name the particle", "[smoothing_length][deg
         search.update(p, sph::Box<2>::open(), sph::SmoothingLengthRule::neighbour_number(10)),
         sph::Error);
   }
+}
+
+TEST_CASE("the N-th and (N+1)-th nearest candidates, found in one pass, are a full sort's",
+          "[smoothing]") {
+  // settle_by_count's common case (the count a few away from N) keeps the few candidates
+  // nearest 2h on the side where the two ranks lie; on random distances, with and without
+  // ties (distances from a few values, as on a lattice), both must equal a full sort's.
+  std::mt19937_64 random(3);
+  const std::size_t n = 64;
+  long compared = 0;
+  for (int trial = 0; trial < 20000; ++trial) {
+    const std::size_t size = 70 + random() % 200;
+    const bool ties = trial % 4 == 0;
+    std::vector<double> r2(size);
+    for (double& x : r2)
+      x = ties ? static_cast<double>(random() % 50)
+               : std::uniform_real_distribution<double>(0, 10)(random);
+    std::vector<std::uint32_t> index(size);
+    std::vector<sph::Image> image(size);
+    const sph::CandidateSpan span{index.data(), image.data(), r2.data(), size};
+    std::vector<double> sorted = r2;
+    std::sort(sorted.begin(), sorted.end());
+    const double reach2 = std::uniform_real_distribution<double>(
+        sorted[50], sorted[std::min<std::size_t>(size - 1, 80)])(random);
+    const auto inside = static_cast<std::size_t>(
+        std::count_if(r2.begin(), r2.end(), [&](double x) { return x < reach2; }));
+    const bool below = inside > n;
+    if (inside == n || (below ? inside - n : n - inside) >= sph::few) continue;
+    const auto [rn2, rn12] =
+        sph::nearest_ranks(span, reach2, below, below ? inside - n + 1 : n - inside + 1);
+    ++compared;
+    REQUIRE(rn2 == sorted[n - 1]);
+    REQUIRE(rn12 == sorted[n]);
+  }
+  CHECK(compared > 10000);
 }
