@@ -103,3 +103,35 @@ TEST_CASE("reused candidates give the brute-force list as particles move and wra
     CHECK(search.searches() > 1);
   }
 }
+
+TEST_CASE("reused candidates give the brute-force list across a shear layer, h spread 10x",
+          "[neighbours]") {
+  // A thin gas in a unit cube sheared along x (the upper half moves at +0.5, the lower at
+  // -0.5) with a dense clump in one corner, so that the smallest reach is a twentieth of the
+  // largest and the local motion is bounded on several levels of cells.  A thin particle near
+  // the layer sees hardly any other particle in the finest cells around it; only cells as
+  // large as its reach see the other half of the gas slide past.  A bound read on cells
+  // smaller than the reach would keep stale candidates and miss the pairs that slide in.
+  // (test_local_reuse.cpp follows a collapse, where the levels matter as well.)
+  const sph::Box<3> open = sph::Box<3>::open();
+  std::mt19937_64 rng(7);
+  std::uniform_real_distribution<double> unit(0.0, 1.0);
+  sph::Particles<3> p;
+  for (int i = 0; i < 1500; ++i)
+    p.add(sph::Vec<3>(unit(rng), unit(rng), unit(rng)), sph::Vec<3>::Zero(), 1.0);
+  while (p.size() < 2500) {
+    const sph::Vec<3> x(2 * unit(rng) - 1, 2 * unit(rng) - 1, 2 * unit(rng) - 1);
+    if (x.norm() < 1) p.add(sph::Vec<3>(0.9, 0.9, 0.9) + 0.05 * x, sph::Vec<3>::Zero(), 1.0);
+  }
+  sph::NeighbourSearch<3> search;
+  double h_min = 1e30, h_max = 0;
+  for (int step = 0; step < 20; ++step) {
+    for (auto& x : p.position) x[0] += x[2] > 0.5 ? 0.005 : -0.005;
+    search.update(p, open, sph::SmoothingLengthRule::neighbour_number(32));
+    REQUIRE(test::listed(search.list(), p.size()) == brute_force(p, open));
+    for (double h : p.smoothing_length) h_min = std::min(h_min, h), h_max = std::max(h_max, h);
+  }
+  INFO("h from " << h_min << " to " << h_max << "; reuses " << search.reuses());
+  CHECK(h_max > 10 * h_min);
+  CHECK(search.reuses() > 0);
+}
