@@ -340,7 +340,8 @@ class Simulation {
     return settings_.timestep_rule == Settings::TimestepRule::signal_velocity;
   }
 
-  // The least step of particle i's criteria (particle_timestep, without the string).
+  // The least step of particle i's criteria and which one sets it (allowed_timestep and
+  // particle_timesteps; a name, not a string, on this per-particle path).
   struct Limit {
     double dt = std::numeric_limits<double>::infinity();
     std::size_t particle = 0;

@@ -156,7 +156,7 @@ inline bool settle_on_shell(double target, double shell, double tie, double radi
 /// the count is above N) or the k smallest outside it.  One pass keeps those k in a small
 /// sorted array (no copy of a side, no selection over it; the test that picks a side is a
 /// select, not a branch, so it costs no mispredictions) and returns the two squared distances,
-/// the same values a full selection finds.  k must be below `few`, and the side must hold at
+/// the same values a full selection finds.  k must lie in [2, `few`], and the side must hold at
 /// least k candidates.
 inline constexpr std::size_t few = 16;
 inline std::pair<double, double> nearest_ranks(const CandidateSpan& found, double reach2,

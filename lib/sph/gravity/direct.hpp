@@ -92,13 +92,12 @@ struct DirectGravity {
       ys[j] = p.position[j][1];
       zs[j] = p.position[j][2];
     }
-    std::vector<double> fixed;
-    if (fixed_softening > 0) fixed.assign(n, fixed_softening);
-    const double* h = fixed_softening > 0 ? fixed.data() : p.smoothing_length.data();
     const double* m = p.mass.data();
-    // (1/h once per particle: a pair then costs one division, 1/r; see softening.hpp)
+    // 1/h of the softening length (fixed, or each particle's h), once per particle: a pair then
+    // costs one division, 1/r (see softening.hpp)
     std::vector<double> inverse_h(n);
-    for (std::size_t j = 0; j < n; ++j) inverse_h[j] = 1.0 / h[j];
+    for (std::size_t j = 0; j < n; ++j)
+      inverse_h[j] = 1.0 / (fixed_softening > 0 ? fixed_softening : p.smoothing_length[j]);
     const double* inv_h = inverse_h.data();
 #pragma omp parallel for schedule(dynamic, 64) if (n >= 256)
     for (std::size_t i = 0; i < n; ++i) {
