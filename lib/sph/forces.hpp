@@ -23,6 +23,7 @@
 /// name -- a viscosity, a non-central term, the energy equation of a polytropic gas -- is not
 /// in its loop at all.
 
+#include "sph/active_set.hpp"
 #include "sph/error.hpp"
 #include "sph/fields.hpp"
 #include "sph/kernel.hpp"
@@ -130,11 +131,13 @@ inline auto pair_force(const ParticleView<D>& in, const TermList& terms, std::si
 /// positions and velocities one array per axis.  Without \p track_signal the loop has no trace
 /// of the signal velocity (the time step of eq 7 does not need it).  When a term takes sums in
 /// the force pass (terms.hpp, PairSum), each particle's sums go to \p sums, for the term to
-/// finish after the pass; a scene without such a term has no trace of them in its loop.
+/// finish after the pass; a scene without such a term has no trace of them in its loop.  Only
+/// the particles of \p active are computed (all by default; with individual time steps, those
+/// whose step ends now), each exactly as in a pass over all.
 template <int D, class K, class TermList, bool evolve_energy, bool track_signal = false>
 void compute_forces(Particles<D>& p, const NeighbourList<D>& list, const ParticleView<D>& in,
                     const TermList& terms, DerivedFields<D>& fields, double signal_beta = 0.0,
-                    std::vector<PairSum>* sums = nullptr) {
+                    std::vector<PairSum>* sums = nullptr, ActiveSet active = {}) {
   const std::size_t n = p.size();
   constexpr bool tracks_mu = TermList::tracks_mu;
   constexpr bool extra = TermList::template any_pair_acceleration<D>;
@@ -147,8 +150,10 @@ void compute_forces(Particles<D>& p, const NeighbourList<D>& list, const Particl
             "them was given (the sums argument of compute_forces)");
     sums->resize(n);
   }
+  const std::size_t count_active = active.size(n);
 #pragma omp parallel for schedule(dynamic, 512) if (n >= parallel_threshold)
-  for (std::size_t i = 0; i < n; ++i) {
+  for (std::size_t k_active = 0; k_active < count_active; ++k_active) {
+    const std::size_t i = active[k_active];
     const ParticleView<D> local = in;  // a private copy: its pointers stay in registers
     const std::span<const Neighbour> nb = list.of(i);
     const auto count = static_cast<std::ptrdiff_t>(nb.size());

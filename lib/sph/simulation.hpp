@@ -36,6 +36,7 @@
 /// it (their own limits do).  A scene may also fix the step (Watkins et al. integrate with a
 /// constant one).  The limiting criterion and particle of the last step are reported.
 
+#include "sph/active_set.hpp"
 #include "sph/box.hpp"
 #include "sph/density.hpp"
 #include "sph/fields.hpp"
@@ -45,6 +46,7 @@
 #include "sph/parallel.hpp"
 #include "sph/particles.hpp"
 #include "sph/scene.hpp"
+#include "sph/timestep_limit.hpp"
 
 #include <algorithm>
 #include <cmath>
@@ -68,15 +70,6 @@ struct Settings {
   double fixed_timestep = 0;    ///< a constant step (Watkins et al.); 0: the limits decide
   long max_steps = 10'000'000;  ///< a run that needs more steps stops with an error
   double min_timestep = 1e-12;  ///< a step below this (relative to t_end) stops with an error
-};
-
-/// Which criterion set the last time step, and where.
-struct TimestepLimit {
-  /// "Courant (eq 7)", "signal velocity", "acceleration", "cooling", a term's or a potential's
-  /// name, "output time", "fixed step"
-  std::string criterion;
-  std::size_t particle = 0;
-  double dt = 0;
 };
 
 /// The particles, the box and the parts a scene S names, evaluated together: the passes of
@@ -128,8 +121,14 @@ class Simulation {
   }
 
   // --- one evaluation: every pass the scene needs, at the current state --------------------
-  /// All passes at the current positions and (predicted) velocities and energies.
-  void evaluate() {
+  /// All passes at the current positions and (predicted) velocities and energies.  With an
+  /// ActiveSet (an integrator of individual time steps: the particles whose step ends now),
+  /// the smoothing lengths, densities and the passes before the forces still cover every
+  /// particle (they are cheap, and the active particles read their neighbours' values), while
+  /// the force pass, its per-particle terms, gravity and the external potential compute only
+  /// the active particles; the others keep their accelerations and energy rates.
+  void evaluate(ActiveSet active = {}) {
+    evaluated_ = active.size(particles_.size());
     if constexpr (hydro) {
       // (a kick may have left a particle with negative energy: stop before it becomes a NaN)
       check_energy("after the kick, before the forces");
@@ -143,19 +142,23 @@ class Simulation {
       if (pair_signal()) {
         compute_forces<D, K, TermList, evolve_energy, true>(particles_, search_.list(), view(),
                                                             terms_, fields_, settings_.signal_beta,
-                                                            &force_sums_);
+                                                            &force_sums_, active);
       } else {
         compute_forces<D, K, TermList, evolve_energy>(particles_, search_.list(), view(), terms_,
-                                                      fields_, 0.0, &force_sums_);
+                                                      fields_, 0.0, &force_sums_, active);
       }
-      if constexpr (TermList::template any_force_sum<D>) finish_force_sums();
-      if constexpr (TermList::template any_after_force<D>) after_force();
-      if constexpr (keeps_hydro_acceleration) hydro_acceleration_ = particles_.acceleration;
+      if constexpr (TermList::template any_force_sum<D>) finish_force_sums(active);
+      if constexpr (TermList::template any_after_force<D>) after_force(active);
+      if constexpr (keeps_hydro_acceleration) {
+        hydro_acceleration_.resize(particles_.size());
+        for (std::size_t k = 0; k < evaluated_; ++k)
+          hydro_acceleration_[active[k]] = particles_.acceleration[active[k]];
+      }
     } else {
-      std::fill(particles_.acceleration.begin(), particles_.acceleration.end(), Vec<D>::Zero());
+      for (std::size_t k = 0; k < evaluated_; ++k) particles_.acceleration[active[k]].setZero();
     }
-    if constexpr (Gravity::active) gravity_.add_accelerations(particles_, box_);
-    if constexpr (External::active) external_accelerations();
+    if constexpr (Gravity::active) gravity_.add_accelerations(particles_, box_, active);
+    if constexpr (External::active) external_accelerations(active);
     check_finite_forces();
   }
 
@@ -201,14 +204,33 @@ class Simulation {
       dt[i] = moves(i) ? particle_limit(i, in).dt : std::numeric_limits<double>::infinity();
   }
 
-  /// One step of the scene's integrator, of at most dt_max; returns the step taken.
+  /// The step particle i alone allows now, and which criterion sets it (see particle_timesteps).
+  TimestepLimit particle_timestep(std::size_t i) const {
+    if (settings_.fixed_timestep > 0) return {"fixed step", i, settings_.fixed_timestep};
+    if (!moves(i)) return {"none", i, std::numeric_limits<double>::infinity()};
+    const Limit limit = particle_limit(i, view());
+    return {limit.criterion, i, limit.dt};
+  }
+
+  /// Whether the scene's integrator gives each particle its own time step.
+  static constexpr bool individual_steps = requires { requires Integrator::individual_steps; };
+
+  /// One step of the scene's integrator, of at most dt_max; returns the step taken.  With
+  /// individual time steps, one step is the advance to the next moment at which some
+  /// particles' steps end (see individual_leapfrog.hpp).
   double step(double dt_max = std::numeric_limits<double>::infinity()) {
-    TimestepLimit limit = allowed_timestep();
-    if (dt_max < limit.dt) limit = {"output time", limit.particle, dt_max};
-    require(std::isfinite(limit.dt) && limit.dt > 0,
-            "time step: no finite positive step (all particles at rest with zero sound speed?)");
+    TimestepLimit limit;
+    if constexpr (individual_steps) {
+      require(dt_max > 0, "time step: the step must be positive");
+      limit = integrator_.step(*this, dt_max);
+    } else {
+      limit = allowed_timestep();
+      if (dt_max < limit.dt) limit = {"output time", limit.particle, dt_max};
+      require(std::isfinite(limit.dt) && limit.dt > 0,
+              "time step: no finite positive step (all particles at rest with zero sound speed?)");
+      integrator_.step(*this, limit.dt);
+    }
     const double dt = limit.dt;
-    integrator_.step(*this, dt);
     if constexpr (Boundaries::has_constraint) {
       if (constraint_failed_ >= 0) {
         const auto i = static_cast<std::size_t>(constraint_failed_);
@@ -332,6 +354,18 @@ class Simulation {
   }
   double time() const { return time_; }
   long steps() const { return steps_; }
+  /// How many particles the last evaluation computed (all but with individual time steps).
+  std::size_t evaluated() const { return evaluated_; }
+  /// Whether every particle's velocity, energy and acceleration belong to the present time:
+  /// always with one step for all; with individual time steps, only where all their steps end
+  /// together (between, a particle in mid-step carries predicted values).
+  bool synchronised() const {
+    if constexpr (individual_steps)
+      return integrator_.synchronised();
+    else
+      return true;
+  }
+  const Integrator& integrator() const { return integrator_; }
   const TimestepLimit& last_limit() const { return last_limit_; }
 
  private:
@@ -459,9 +493,9 @@ class Simulation {
 
   // The sums a term took in the force pass, finished particle by particle (before after_force,
   // which may use them).
-  void finish_force_sums() {
+  void finish_force_sums(ActiveSet active) {
     const ParticleView<D> in = view();
-    per_particle([&](auto& t, std::size_t i) {
+    per_particle(active, [&](auto& t, std::size_t i) {
       if constexpr (HasForceSum<std::decay_t<decltype(t)>, D>)
         t.force_sum_finish(i, force_sums_[i], in);
     });
@@ -476,10 +510,10 @@ class Simulation {
   }
 
   // Per-particle terms after the force pass: they add to a_i and du_i/dt.
-  void after_force() {
+  void after_force(ActiveSet active) {
     auto& p = particles_;
     const ParticleView<D> in = view();
-    per_particle([&](auto& t, std::size_t i) {
+    per_particle(active, [&](auto& t, std::size_t i) {
       if constexpr (HasAfterForce<std::decay_t<decltype(t)>, D>) {
         double dudt = evolve_energy ? p.energy_rate[i] : 0.0;
         t.after_force(i, in, p.acceleration[i], dudt);
@@ -488,19 +522,26 @@ class Simulation {
     });
   }
 
-  // Call f(term, i) for every term and every particle, in parallel over particles.
+  // Call f(term, i) for every term and every particle (of `active`), in parallel over particles.
   template <class F>
   void per_particle(F&& f) {
-    const std::size_t n = particles_.size();
+    per_particle(ActiveSet{}, f);
+  }
+  template <class F>
+  void per_particle(ActiveSet active, F&& f) {
+    const std::size_t n = particles_.size(), count = active.size(n);
 #pragma omp parallel for schedule(static) if (n >= parallel_threshold)
-    for (std::size_t i = 0; i < n; ++i) terms_.for_each([&](auto& t) { f(t, i); });
+    for (std::size_t k = 0; k < count; ++k) terms_.for_each([&](auto& t) { f(t, active[k]); });
   }
 
-  void external_accelerations() {
+  void external_accelerations(ActiveSet active) {
     auto& p = particles_;
-    const std::size_t n = p.size();
+    const std::size_t n = p.size(), count = active.size(n);
 #pragma omp parallel for schedule(static) if (n >= parallel_threshold)
-    for (std::size_t i = 0; i < n; ++i) p.acceleration[i] += external_.acceleration(p.position[i]);
+    for (std::size_t k = 0; k < count; ++k) {
+      const std::size_t i = active[k];
+      p.acceleration[i] += external_.acceleration(p.position[i]);
+    }
   }
 
   // Two particles at one point see each other at r = 0, where the kernel gradient is zero:
@@ -569,6 +610,7 @@ class Simulation {
   std::vector<Vec<D>> hydro_acceleration_;  // see hydro_acceleration()
   double time_ = 0;
   long steps_ = 0;
+  std::size_t evaluated_ = 0;  // particles computed by the last evaluation
   TimestepLimit last_limit_;
   long constraint_failed_ = -1;  // the lowest particle a boundary could not bring back, if any
 };

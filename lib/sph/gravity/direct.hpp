@@ -28,6 +28,7 @@
 /// (gravity/tree.hpp) is measured against, and the module to use below a few thousand
 /// particles.
 
+#include "sph/active_set.hpp"
 #include "sph/box.hpp"
 #include "sph/error.hpp"
 #include "sph/gravity/softening.hpp"
@@ -76,15 +77,16 @@ struct DirectGravity {
             "direct gravity: G must be positive and finite (got " + show(g) + ")");
   }
 
-  /// Adds \f$ -\nabla\Phi_i \f$ to every acceleration and keeps \f$ \Phi_i \f$ for the energy.
+  /// Adds \f$ -\nabla\Phi_i \f$ to the acceleration of every particle of \p active (all by
+  /// default) and keeps their \f$ \Phi_i \f$ for the energy.
   template <int D>
-  void add_accelerations(Particles<D>& p, const Box<D>& box) {
+  void add_accelerations(Particles<D>& p, const Box<D>& box, ActiveSet active = {}) {
     require_gravity_input(p, box, "direct gravity");
     require(std::isfinite(fixed_softening) && fixed_softening >= 0,
             "direct gravity: the fixed softening length must be finite and >= 0 (got " +
                 show(fixed_softening) + ")");
     const std::size_t n = p.size();
-    potential_.assign(n, 0.0);
+    if (active.all() || potential_.size() != n) potential_.assign(n, 0.0);
     // (one array per axis: the inner loop then streams through memory)
     std::vector<double> xs(n), ys(n), zs(n);
     for (std::size_t j = 0; j < n; ++j) {
@@ -99,8 +101,10 @@ struct DirectGravity {
     for (std::size_t j = 0; j < n; ++j)
       inverse_h[j] = 1.0 / (fixed_softening > 0 ? fixed_softening : p.smoothing_length[j]);
     const double* inv_h = inverse_h.data();
-#pragma omp parallel for schedule(dynamic, 64) if (n >= 256)
-    for (std::size_t i = 0; i < n; ++i) {
+    const std::size_t count = active.size(n);
+#pragma omp parallel for schedule(dynamic, 64) if (count >= 256)
+    for (std::size_t k = 0; k < count; ++k) {
+      const std::size_t i = active[k];
       double ax = 0, ay = 0, az = 0, phi = 0;
       const double inv_hi = inv_h[i];
       for (std::size_t j = 0; j < n; ++j) {

@@ -103,6 +103,7 @@
 /// self-energy \f$ -\tfrac75 Gm_i/h_i \f$ (the particle is on its own group's particle list, at
 /// r = 0), so that the two modules' potential energies agree to the tree's error.
 
+#include "sph/active_set.hpp"
 #include "sph/box.hpp"
 #include "sph/error.hpp"
 #include "sph/gravity/direct.hpp"
@@ -186,11 +187,14 @@ struct TreeGravity {
                 show(fixed_softening) + ")");
   }
 
-  /// Adds \f$ -\nabla\Phi_i \f$ to every acceleration and keeps \f$ \Phi_i \f$ for the energy.
+  /// Adds \f$ -\nabla\Phi_i \f$ to the acceleration of every particle of \p active (all by
+  /// default) and keeps their \f$ \Phi_i \f$ for the energy.  The tree is built from all
+  /// particles; the walk visits only the groups that hold an active particle and sums only for
+  /// those, with the same lists as for all: an active particle's result is the same to the bit.
   template <int D>
-  void add_accelerations(Particles<D>& p, const Box<D>& box) {
+  void add_accelerations(Particles<D>& p, const Box<D>& box, ActiveSet active = {}) {
     require_gravity_input(p, box, "tree gravity");
-    if constexpr (D == 3) evaluate(p);
+    if constexpr (D == 3) evaluate(p, active);
   }
 
   /// \f$ \tfrac12\sum_i m_i\Phi_i \f$ at the last evaluation.
@@ -299,7 +303,7 @@ struct TreeGravity {
     }
   };
 
-  void evaluate(Particles<3>& p) {
+  void evaluate(Particles<3>& p, ActiveSet active) {
     validate();
     const std::size_t n = p.size();
     require(n < std::numeric_limits<std::uint32_t>::max(),
@@ -309,11 +313,12 @@ struct TreeGravity {
         throw Error("tree gravity: particle " + show(i) + " has mass " + show(p.mass[i]) +
                     " (a node's centre of mass needs positive masses)");
     }
-    potential_.assign(n, 0.0);
+    if (active.all() || potential_.size() != n) potential_.assign(n, 0.0);
     statistics_ = Statistics{};
     if (n == 0) return;
     const auto start = std::chrono::steady_clock::now();
     build(p);
+    mark_active(active);
     // (1/h in tree order: a softened pair then costs one division, 1/r; see softening.hpp)
     inv_h_.resize(n);
     for (std::size_t t = 0; t < n; ++t) inv_h_[t] = 1.0 / h_[t];
@@ -321,6 +326,7 @@ struct TreeGravity {
     walk();
     // Back to the particles' own order.
     for (std::size_t t = 0; t < n; ++t) {
+      if (!active_at(t)) continue;
       const std::size_t i = index_[t];
       p.acceleration[i] += G * Vec<3>(ax_[t], ay_[t], az_[t]);
       potential_[i] = G * phi_[t];
@@ -328,6 +334,31 @@ struct TreeGravity {
     const auto done = std::chrono::steady_clock::now();
     statistics_.build_seconds = std::chrono::duration<double>(built - start).count();
     statistics_.walk_seconds = std::chrono::duration<double>(done - built).count();
+  }
+
+  // Which tree positions are active: none_active_ empty when all are; otherwise
+  // active_before_[t] counts the active particles at tree positions below t, so that a range
+  // of the tree order holds an active particle when the two counts at its ends differ.
+  void mark_active(ActiveSet active) {
+    const std::size_t n = x_.size();
+    if (active.all()) {
+      active_before_.clear();
+      active_count_ = n;
+      return;
+    }
+    flag_.assign(n, 0);
+    active_count_ = active.size(n);
+    for (std::size_t k = 0; k < active_count_; ++k) flag_[active[k]] = 1;
+    active_before_.resize(n + 1);
+    active_before_[0] = 0;
+    for (std::size_t t = 0; t < n; ++t)
+      active_before_[t + 1] = active_before_[t] + flag_[index_[t]];
+  }
+  bool active_at(std::size_t t) const {
+    return active_before_.empty() || active_before_[t + 1] > active_before_[t];
+  }
+  bool any_active(std::uint32_t begin, std::uint32_t end) const {
+    return active_before_.empty() || active_before_[end] > active_before_[begin];
   }
 
   // --- building -----------------------------------------------------------------------------
@@ -578,9 +609,9 @@ struct TreeGravity {
       node_pairs += lists.node_pairs;
       statistics_.groups += lists.groups;
     }
-    statistics_.particle_interactions =
-        static_cast<double>(particle_pairs) / static_cast<double>(n);
-    statistics_.node_interactions = static_cast<double>(node_pairs) / static_cast<double>(n);
+    const auto summed = static_cast<double>(std::max<std::size_t>(active_count_, 1));
+    statistics_.particle_interactions = static_cast<double>(particle_pairs) / summed;
+    statistics_.node_interactions = static_cast<double>(node_pairs) / summed;
   }
 
   // The targets [begin, end): the target node `target`, or a group when they are few (or one
@@ -588,6 +619,7 @@ struct TreeGravity {
   void visit(std::uint32_t begin, std::uint32_t end, std::uint32_t target,
              const std::uint32_t* candidates, std::size_t count, int level, Lists& lists,
              bool planning) {
+    if (!any_active(begin, end)) return;  // (no particle here needs its sums)
     const bool group = target == no_node || nodes_[target].leaf ||
                        end - begin <= static_cast<std::uint32_t>(group_size);
     if (planning && (group || end - begin <= task_grain)) {
@@ -706,10 +738,13 @@ struct TreeGravity {
       }
     }
     lists.far_from(centre, length_scale_);
-    lists.particle_pairs += (end - begin) * lists.particles;
-    lists.node_pairs += (end - begin) * lists.nodes;
+    const std::size_t summed =
+        active_before_.empty() ? end - begin : active_before_[end] - active_before_[begin];
+    lists.particle_pairs += summed * lists.particles;
+    lists.node_pairs += summed * lists.nodes;
     ++lists.groups;
     for (std::uint32_t t = begin; t < end; ++t) {
+      if (!active_at(t)) continue;
       if (order == Order::quadrupole) {
         sum_lists<true>(lists, t, centre);
       } else {
@@ -841,6 +876,10 @@ struct TreeGravity {
   std::vector<double> x_, y_, z_, m_, h_;
   std::vector<std::uint32_t> index_;
   std::vector<double> inv_h_;  // 1/h, in tree order
+  // The active particles (see mark_active).
+  std::vector<std::uint32_t> active_before_;
+  std::vector<std::uint8_t> flag_;
+  std::size_t active_count_ = 0;
   // The tree's units (see units()): lengths and masses are multiplied by these powers of two
   // before they are rounded to single precision.
   double length_scale_ = 1, mass_scale_ = 1;
