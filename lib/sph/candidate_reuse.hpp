@@ -86,6 +86,24 @@ inline bool NeighbourSearch<D, K>::try_reuse(Particles<D>& p, const Box<D>& box,
     Block& block = blocks_[t];
     block.kept.clear(block.end - block.begin);
     for (std::size_t i = block.begin; i < block.end; ++i) {
+      if (partial_ && !partial_[i]) {
+        // A partial update (see update): a particle that is not active keeps its h.  Its
+        // candidates hold every particle within 2h_i if they still cover 2h_i (else it is
+        // searched again, with its h); then it refreshes its pairs only if it may hand one to
+        // an active particle, i.e. if one is among its candidates.
+        block.kept.first[i - block.begin] = block.kept.used;
+        farthest2_[i] = 0;
+        search_again_[i] = covered_[i] < K::support * p.smoothing_length[i];
+        if (search_again_[i]) {
+          failed = 1;
+          continue;
+        }
+        const CandidateSpan candidates = block.span(first_[i], last_[i]);
+        int near = 0;
+        for (std::size_t k = 0; k < candidates.size; ++k) near |= partial_[candidates.index[k]];
+        if (near) keep_own(block, i, refreshed(block, i, unwrapped), p.smoothing_length[i]);
+        continue;
+      }
       const bool settled = settle_from_candidates(p, rule, block, i, covered_[i], unwrapped);
       failed |= !settled;
       search_again_[i] = !settled || covered_[i] < K::support * p.smoothing_length[i] *

@@ -31,6 +31,7 @@
 /// it: a random set has no particle-free zone around each particle, and with the self term the
 /// density is biased high).
 
+#include "sph/active_set.hpp"
 #include "sph/fields.hpp"
 #include "sph/kernel.hpp"
 #include "sph/neighbours.hpp"
@@ -162,12 +163,14 @@ struct NoFinish {
 /// `fields` (density_rate, velocity_divergence, velocity_curl), from `velocities` one array
 /// per axis, in the same loop over each particle's neighbours as rho
 /// (density_and_velocity_sums); without, the pass is the plain density sum and `velocities` is
-/// not read.  rho is the same sum in both, equal to round-off.
+/// not read.  rho is the same sum in both, equal to round-off.  Only the particles of
+/// `active` are computed (all by default; with individual time steps, those whose step ends
+/// now).
 template <int D, class K = Kernel<D>, Needs needs = Needs::nothing, class Finish = NoFinish>
 void compute_density(Particles<D>& p, const NeighbourList<D>& list,
                      const PositionView<D>& positions, DensityForm form = DensityForm::selhammar(),
                      const Finish& finish = {}, const std::array<const double*, D>& velocities = {},
-                     DerivedFields<D>* fields = nullptr) {
+                     DerivedFields<D>* fields = nullptr, ActiveSet active = {}) {
   const std::size_t n = p.size();
   require_positive_masses(p, "density");
   constexpr bool rates = any_velocity_field(needs);
@@ -176,8 +179,12 @@ void compute_density(Particles<D>& p, const NeighbourList<D>& list,
     fields->resize(needs, n);
   }
   long bad = -1;
-#pragma omp parallel for schedule(dynamic, 512) if (n >= parallel_threshold)
-  for (std::size_t i = 0; i < n; ++i) {
+  const std::size_t count = active.size(n);
+  // (chunks of 512 particles; of 64 for a subset, which is often small)
+  const int chunk = active.all() ? 512 : 64;
+#pragma omp parallel for schedule(dynamic, chunk) if (n >= parallel_threshold)
+  for (std::size_t k = 0; k < count; ++k) {
+    const std::size_t i = active[k];
     double rho;
     if constexpr (rates) {
       const auto [sum, sums] =

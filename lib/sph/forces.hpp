@@ -151,7 +151,9 @@ void compute_forces(Particles<D>& p, const NeighbourList<D>& list, const Particl
     sums->resize(n);
   }
   const std::size_t count_active = active.size(n);
-#pragma omp parallel for schedule(dynamic, 512) if (n >= parallel_threshold)
+  // (chunks of 512 particles; of 64 for a subset, which is often small)
+  const int chunk = active.all() ? 512 : 64;
+#pragma omp parallel for schedule(dynamic, chunk) if (n >= parallel_threshold)
   for (std::size_t k_active = 0; k_active < count_active; ++k_active) {
     const std::size_t i = active[k_active];
     const ParticleView<D> local = in;  // a private copy: its pointers stay in registers

@@ -90,6 +90,8 @@ struct IndividualLeapfrog {
   const std::vector<std::uint64_t>& step_ticks() const { return length_; }
   /// The length of the present block.
   double block_length() const { return block_; }
+  /// The particles the last step evaluated (whose steps ended then), in increasing order.
+  const std::vector<std::uint32_t>& active() const { return active_; }
 
   /// Advance \p sim to the next moment at which some particles' steps end, no later than
   /// \p dt_max from now.  Returns that advance, with the criterion and particle of the shortest
@@ -234,13 +236,20 @@ struct IndividualLeapfrog {
     const std::size_t n = p.size();
     const auto& list = sim.neighbours();
     constexpr bool energy = Sim::evolve_energy;
+    // The shortest new step among each particle's neighbours that start now (the lists of the
+    // particles that start now are those of their last evaluation, which just ended their
+    // steps; pairs are listed from both sides).
+    least_.assign(n, std::numeric_limits<std::uint64_t>::max());
+    for (const std::uint32_t i : starting_) {
+      for (const auto& nb : list.of(i)) {
+        std::uint64_t& least = least_[nb.index];
+        least = std::min(least, length_[i]);
+      }
+    }
 #pragma omp parallel for schedule(static) if (n >= parallel_threshold)
     for (std::size_t j = 0; j < n; ++j) {
       if (start_[j] == now_ || !sim.moves(j)) continue;  // (starting now, or never moving)
-      std::uint64_t least = std::numeric_limits<std::uint64_t>::max();
-      for (const auto& nb : list.of(j)) {
-        if (start_[nb.index] == now_) least = std::min(least, length_[nb.index]);
-      }
+      const std::uint64_t least = least_[j];
       if (!(limiter * static_cast<double>(least) < static_cast<double>(length_[j]))) continue;
       const std::uint64_t end = now_ + least;
       if (end >= start_[j] + length_[j]) continue;
@@ -342,6 +351,7 @@ struct IndividualLeapfrog {
   std::vector<std::uint64_t> start_, length_;  // each particle's present step, in ticks
   std::vector<std::uint64_t> proposed_;        // what a particle starting now asks for
   std::vector<std::uint64_t> new_length_;
+  std::vector<std::uint64_t> least_;  // the shortest new step among a particle's neighbours
   std::vector<double> wanted_;
   std::vector<std::uint32_t> starting_, active_;
   std::vector<Vec<D>> v_half_;   // v at the middle of each particle's step

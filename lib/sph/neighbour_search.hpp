@@ -11,6 +11,7 @@
 /// little relative to it: those members are in candidate_reuse.hpp, which this file includes
 /// at its end.
 
+#include "sph/active_set.hpp"
 #include "sph/box.hpp"
 #include "sph/cell_grid.hpp"
 #include "sph/dimension.hpp"
@@ -42,7 +43,16 @@ class NeighbourSearch {
  public:
   /// Update p.smoothing_length and p.neighbour_count by `rule`, then rebuild the list.
   /// Positions on periodic axes must lie in the box (the integrator wraps them).
-  void update(Particles<D>& p, const Box<D>& box, const SmoothingLengthRule& rule) {
+  ///
+  /// With an ActiveSet that is not all (individual time steps), only the active particles get
+  /// a new h and a list; the others keep their h, and their lists are left empty.  An active
+  /// particle's list is still complete -- its pairs within 2 max(h_i, h_j) at the present
+  /// positions, with the present h_j of the others: the particles that hand it one-sided pairs
+  /// (those with an active particle among their candidates) refresh their pairs with their own
+  /// h; the rest do nothing at all.  Should the candidates not serve (a new box or rule), the
+  /// update falls back to a full search, which settles every h.
+  void update(Particles<D>& p, const Box<D>& box, const SmoothingLengthRule& rule,
+              ActiveSet active = {}) {
     const std::size_t n = p.size();
     require(n > 0, "neighbour search: no particles");
     require(n < (std::size_t{1} << 31), "neighbour search: too many particles");
@@ -55,8 +65,18 @@ class NeighbourSearch {
       shell_count_.assign(n, -1);
       shell_rule_ = rule;
     }
-    if (try_reuse(p, box, rule)) return;
-    full_search(p, box, rule);
+    partial_ = nullptr;
+    if (!active.all()) {
+      active_flag_.assign(n, 0);
+      for (std::size_t k = 0; k < active.size(n); ++k) active_flag_[active[k]] = 1;
+      partial_ = active_flag_.data();
+    }
+    const bool reused = try_reuse(p, box, rule);
+    if (!reused) {
+      partial_ = nullptr;
+      full_search(p, box, rule);
+    }
+    partial_ = nullptr;
   }
 
   /// Make the next update a full search (the reuse test covers motion, not particles moved or
@@ -206,7 +226,13 @@ class NeighbourSearch {
     Candidates& found = block.found;
     for (std::size_t i = block.begin; i < block.end; ++i) {
       if (!search_again_[i]) continue;
-      reach_[i] = settle_particle(p, rule, i, found);
+      // (in a partial update a particle that is not active keeps its h: its candidates only)
+      if (partial_ && !partial_[i]) {
+        reach_[i] = K::support * p.smoothing_length[i] * (1.0 + search_margin);
+        gather(p, i, reach_[i], found);
+      } else {
+        reach_[i] = settle_particle(p, rule, i, found);
+      }
       if (any_wrapped_) to_unwrapped_frame(found, i);
       block.live -= last_[i] - first_[i];
       first_[i] = block.candidates.size();
@@ -350,6 +376,8 @@ class NeighbourSearch {
       for (std::size_t e = 0; e < count; ++e)
         possible += support2<K>(h[pairs[e].index]) <= farthest2;
       if (possible == 0) continue;
+      // (in a partial update, only the active particles receive: the others have no list)
+      const std::uint8_t* receives = partial_;
       if (block.r2.size() < count) block.r2.resize(2 * count);
       double* r2 = block.r2.data();
       const Image own = wrapped_[i];
@@ -365,7 +393,7 @@ class NeighbourSearch {
       for (std::size_t e = 0; e < count; ++e) one_sided += r2[e] >= support2<K>(h[pairs[e].index]);
       if (one_sided == 0) continue;
       for (std::size_t e = 0; e < count; ++e) {
-        if (r2[e] >= support2<K>(h[pairs[e].index]))
+        if (r2[e] >= support2<K>(h[pairs[e].index]) && (!receives || receives[pairs[e].index]))
           block.reverse.push_back(
               {pairs[e].index, {static_cast<std::uint32_t>(i), mirror_image<D>(pairs[e].image)}});
       }
@@ -375,7 +403,7 @@ class NeighbourSearch {
   // A particle with no neighbour at all cannot be part of a fluid: stop and name it.
   void require_neighbours(const Particles<D>& p) const {
     for (std::size_t i = 0; i < p.size(); ++i) {
-      if (list_.of(i).empty()) {
+      if (list_.of(i).empty() && (!partial_ || partial_[i])) {
         throw Error("particle " + show(i) + " at " + to_string<D>(p.position[i]) +
                     " has no neighbours within 2h = " + show(K::support * p.smoothing_length[i]));
       }
@@ -396,11 +424,15 @@ class NeighbourSearch {
     for (std::size_t t = 0; t < blocks_.size(); ++t) {
       const Block& b = blocks_[t];
       for (std::size_t i = b.begin; i < b.end; ++i) {
-        const std::size_t first = b.kept.first[i - b.begin], count = b.kept.count[i - b.begin];
+        // (in a partial update the pairs of a particle that is not active were kept only to
+        // hand over the one-sided ones: it has no list)
+        const bool listed = !partial_ || partial_[i];
+        const std::size_t first = b.kept.first[i - b.begin],
+                          count = listed ? b.kept.count[i - b.begin] : 0;
         list_.first_[i] = b.kept.pairs.data() + first;
         list_.count_[i] = static_cast<std::uint32_t>(count);
         entries += count;
-        if (count == 0) lonely = std::min(lonely, i);
+        if (count == 0 && listed) lonely = std::min(lonely, i);
       }
     }
     // The one-sided pairs, grouped by the particle that receives them, each group in the
@@ -446,6 +478,9 @@ class NeighbourSearch {
   std::vector<std::size_t> first_, last_;
   std::vector<double> reach_, covered_;
   std::vector<std::uint8_t> search_again_;
+  // During a partial update (individual time steps): 1 for the active particles, else null.
+  const std::uint8_t* partial_ = nullptr;
+  std::vector<std::uint8_t> active_flag_;
   // The frame the candidates live in, since the last full search.
   bool reusable_ = false;
   Box<D> built_box_;

@@ -123,22 +123,22 @@ class Simulation {
   // --- one evaluation: every pass the scene needs, at the current state --------------------
   /// All passes at the current positions and (predicted) velocities and energies.  With an
   /// ActiveSet (an integrator of individual time steps: the particles whose step ends now),
-  /// the smoothing lengths, densities and the passes before the forces still cover every
-  /// particle (they are cheap, and the active particles read their neighbours' values), while
-  /// the force pass, its per-particle terms, gravity and the external potential compute only
-  /// the active particles; the others keep their accelerations and energy rates.
+  /// every pass computes only the active particles, from the present positions and predicted
+  /// velocities of all; the others keep their smoothing lengths, densities, pressures,
+  /// accelerations and energy rates from the last time they were active, and the active ones
+  /// read those (as in PHANTOM and GADGET-2, which predict them).
   void evaluate(ActiveSet active = {}) {
     evaluated_ = active.size(particles_.size());
     if constexpr (hydro) {
       // (a kick may have left a particle with negative energy: stop before it becomes a NaN)
       check_energy("after the kick, before the forces");
-      search_.update(particles_, box_, settings_.smoothing);
+      search_.update(particles_, box_, settings_.smoothing, active);
       positions_.assign(particles_.position);
       velocities_.assign(particles_.velocity);
       fields_.p_over_rho2.resize(particles_.size());
-      density_pass();
-      if constexpr (TermList::template any_gradient_pass<D>) gradient_pass();
-      if constexpr (TermList::template any_before_force<D>) before_force();
+      density_pass(active);
+      if constexpr (TermList::template any_gradient_pass<D>) gradient_pass(active);
+      if constexpr (TermList::template any_before_force<D>) before_force(active);
       if (pair_signal()) {
         compute_forces<D, K, TermList, evolve_energy, true>(particles_, search_.list(), view(),
                                                             terms_, fields_, settings_.signal_beta,
@@ -451,7 +451,7 @@ class Simulation {
 
   // --- the passes ----------------------------------------------------------------------------
   // Density, and in the same loop the equation of state and the terms' after_density hooks.
-  void density_pass() {
+  void density_pass(ActiveSet active) {
     auto& p = particles_;
     // (the fields first: the hooks' view must point at their final arrays)
     fields_.resize(needs, p.size());
@@ -468,17 +468,18 @@ class Simulation {
             });
           }
         },
-        in.v, &fields_);
+        in.v, &fields_, active);
   }
 
   // The gradient pass: a second loop over the same neighbour list, for the terms that have one.
   // Each such term sums its GradientSum over i's pairs, then finishes particle i.
-  void gradient_pass() {
-    const std::size_t n = particles_.size();
+  void gradient_pass(ActiveSet active) {
+    const std::size_t n = particles_.size(), count = active.size(n);
     const ParticleView<D> in = view();
     const NeighbourList<D>& list = search_.list();
 #pragma omp parallel for schedule(dynamic, 512) if (n >= parallel_threshold)
-    for (std::size_t i = 0; i < n; ++i) {
+    for (std::size_t k = 0; k < count; ++k) {
+      const std::size_t i = active[k];
       terms_.for_each([&](auto& t) {
         using T = std::decay_t<decltype(t)>;
         if constexpr (HasGradientPass<T, D>) {
@@ -502,9 +503,9 @@ class Simulation {
   }
 
   // The terms' before_force hooks, particle by particle.
-  void before_force() {
+  void before_force(ActiveSet active) {
     const ParticleView<D> in = view();
-    per_particle([&](auto& t, std::size_t i) {
+    per_particle(active, [&](auto& t, std::size_t i) {
       if constexpr (HasBeforeForce<std::decay_t<decltype(t)>, D>) t.before_force(i, in);
     });
   }

@@ -2,6 +2,7 @@
 // gives each of them what an evaluation of all gives, to the bit, and leaves the others alone;
 // with every particle on one level the scheme is the leapfrog, to round-off; on the Evrard
 // collapse it follows the run with one step for all while it updates far fewer particles.
+#include "brute_force_pairs.hpp"
 #include "sph/gravity/direct.hpp"
 #include "sph/gravity/tree.hpp"
 #include "sph/individual_leapfrog.hpp"
@@ -178,4 +179,46 @@ TEST_CASE("individual time steps: an output time inside a block is refused with 
   while (own.synchronised() && own.time() < 0.5) own.step();
   REQUIRE_FALSE(own.synchronised());
   CHECK_THROWS_WITH(own.step(1e-9), Catch::Contains("inside a block"));
+}
+
+TEST_CASE("individual time steps: each evaluated particle's neighbours are the brute-force ones",
+          "[individual]") {
+  // Only the particles whose step ends get a new h and a list (neighbour_search.hpp); their
+  // lists must hold every pair within 2 max(h_i, h_j), with the h the others kept.
+  sph::EvrardSetup setup;
+  setup.particles = 1000;
+  sph::Simulation<StandardOwnSteps> own(
+      sph::make_evrard_sphere(setup), sph::Box<3>::open(),
+      typename Standard::Terms{{}, sph::MonaghanGingold1983{1, 2, 1e-4}},
+      sph::IdealGas{setup.gamma});
+  own.run_until(0.7);
+  long partial = 0, compared = 0, wrong = 0, listed_inactive = 0;
+  for (int s = 0; s < 60; ++s) {
+    own.step();
+    const auto& active = own.integrator().active();
+    partial += active.size() < setup.particles;
+    const test::PairSet expected = test::brute_force(own.particles(), sph::Box<3>::open());
+    const test::PairSet found = test::listed(own.neighbours(), setup.particles);
+    std::vector<std::uint8_t> is_active(setup.particles, 0);
+    for (const std::uint32_t i : active) is_active[i] = 1;
+    for (const auto& pair : expected) {
+      if (!is_active[std::get<0>(pair)]) continue;
+      ++compared;
+      wrong += found.count(pair) == 0;
+    }
+    for (const auto& pair : found) {
+      if (is_active[std::get<0>(pair)])
+        wrong += expected.count(pair) == 0;
+      else
+        ++listed_inactive;
+    }
+  }
+  std::printf(
+      "  60 steps from t = 0.7 (1000 particles, %ld of them partial): %ld pairs of "
+      "evaluated particles compared, %ld missing or extra; %ld pairs listed for others\n",
+      partial, compared, wrong, listed_inactive);
+  CHECK(partial > 30);
+  CHECK(compared > 0);
+  CHECK(wrong == 0);
+  CHECK(listed_inactive == 0);
 }
