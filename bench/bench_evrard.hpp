@@ -118,11 +118,11 @@ inline void bench_evrard(bool quick) {
   own.run_until(3.0, [&](const auto& o) { updates += static_cast<double>(o.evaluated()); });
   const double s_own = seconds_since(t1);
   std::printf(
-      "  the same with individual time steps: %ld steps updating %.0f particles each on "
-      "average (%.2f of one step for all), %.1f s (%.2f of one step for all), %.2f us per "
-      "particle update\n",
-      own.steps(), updates / double(own.steps()), updates / (double(sim.steps()) * 8192), s_own,
-      s_own / s, s_own * 1e6 / updates);
+      "  the same with individual time steps: %ld steps, %.1f s (%.2f of one step for all);\n"
+      "    %.0f particles updated a step on average, %.2f of one step for all's updates; "
+      "%.2f us per particle update\n",
+      own.steps(), s_own, s_own / s, updates / double(own.steps()),
+      updates / (double(sim.steps()) * 8192), s_own * 1e6 / updates);
 }
 
 }  // namespace bench

@@ -192,14 +192,15 @@ TEST_CASE("individual time steps: each evaluated particle's neighbours are the b
       typename Standard::Terms{{}, sph::MonaghanGingold1983{1, 2, 1e-4}},
       sph::IdealGas{setup.gamma});
   own.run_until(0.7);
+  const auto n = static_cast<std::size_t>(setup.particles);
   long partial = 0, compared = 0, wrong = 0, listed_inactive = 0;
   for (int s = 0; s < 60; ++s) {
     own.step();
     const auto& active = own.integrator().active();
-    partial += active.size() < setup.particles;
+    partial += active.size() < n;
     const test::PairSet expected = test::brute_force(own.particles(), sph::Box<3>::open());
-    const test::PairSet found = test::listed(own.neighbours(), setup.particles);
-    std::vector<std::uint8_t> is_active(setup.particles, 0);
+    const test::PairSet found = test::listed(own.neighbours(), n);
+    std::vector<std::uint8_t> is_active(n, 0);
     for (const std::uint32_t i : active) is_active[i] = 1;
     for (const auto& pair : expected) {
       if (!is_active[std::get<0>(pair)]) continue;

@@ -12,11 +12,13 @@
 /// const app::Extremes peaks = app::extremes(run);   // largest E_kin and E_th, deepest W
 /// \endcode
 ///
-/// The energies are recorded after every step.  The run stops at t = 0.8 to keep a copy of the
-/// particles (the time of Selhammar's Figs 6-7) and the wall time and step count to there, then
-/// goes on to the end.  A run that the simulation stops (a time step below its minimum, a step
-/// budget exceeded, a non-finite value) is not an error here: the message is kept in
-/// EvrardRun::stopped and the run returns what it recorded.
+/// The energies are recorded after every step (with individual time steps, after every step at
+/// which all particles are synchronised: between, a particle in mid-step carries predicted
+/// values and the potential of its last evaluation).  The run stops at t = 0.8 to keep a copy
+/// of the particles (the time of Selhammar's Figs 6-7) and the wall time and step count to
+/// there, then goes on to the end.  A run that the simulation stops (a time step below its
+/// minimum, a step budget exceeded, a non-finite value) is not an error here: the message is
+/// kept in EvrardRun::stopped and the run returns what it recorded.
 ///
 /// Header-only, like the other shared pieces of lib/app that use lib/sph.
 
@@ -51,8 +53,10 @@ struct EvrardRun {
   double momentum_drift = 0;            ///< at the end, see app::momentum_drift
   double energy_error_08 = 0, energy_error = 0;  ///< \f$ |E/E(0) - 1| \f$ at 0.8, at the end
   std::string stopped;                           ///< why the run stopped early, if it did
-  /// The particle updates of the run (particles times steps), and how many of them a scheme of
-  /// individual time steps would have made (see evrard_run_detail::individual_updates).
+  /// The particle updates of the run (the particles each step evaluated: all of them, or with
+  /// individual time steps those whose step ended), and how many of them a scheme of
+  /// individual time steps would have made (with one step for all; see
+  /// evrard_run_detail::individual_updates).
   double updates = 0, individual_updates = 0;
 };
 
@@ -86,10 +90,12 @@ double individual_updates(const Simulation& s) {
 template <class Simulation>
 void record(EvrardRun& run, const Simulation& s) {
   const auto& p = s.particles();
-  run.t.push_back(s.time());
-  run.kinetic.push_back(sph::kinetic_energy(p));
-  run.thermal.push_back(sph::thermal_energy(p));
-  run.potential.push_back(s.potential_energy());
+  if (s.synchronised()) {
+    run.t.push_back(s.time());
+    run.kinetic.push_back(sph::kinetic_energy(p));
+    run.thermal.push_back(sph::thermal_energy(p));
+    run.potential.push_back(s.potential_energy());
+  }
   const auto densest = std::max_element(p.density.begin(), p.density.end());
   if (*densest > run.peak_density) {
     run.peak_density = *densest;
@@ -98,8 +104,8 @@ void record(EvrardRun& run, const Simulation& s) {
   run.least_h = std::min(run.least_h,
                          *std::min_element(p.smoothing_length.begin(), p.smoothing_length.end()));
   if (s.steps() > 0) {
-    run.updates += static_cast<double>(p.size());
-    run.individual_updates += individual_updates(s);
+    run.updates += static_cast<double>(s.evaluated());
+    if constexpr (!Simulation::individual_steps) run.individual_updates += individual_updates(s);
   }
   if (s.steps() > 0 && s.last_limit().criterion != "output time" &&
       s.last_limit().dt < run.least_dt) {

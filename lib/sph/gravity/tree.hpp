@@ -360,6 +360,9 @@ struct TreeGravity {
   bool any_active(std::uint32_t begin, std::uint32_t end) const {
     return active_before_.empty() || active_before_[end] > active_before_[begin];
   }
+  std::size_t active_in(std::uint32_t begin, std::uint32_t end) const {
+    return active_before_.empty() ? end - begin : active_before_[end] - active_before_[begin];
+  }
 
   // --- building -----------------------------------------------------------------------------
   // Nodes with fewer particles than this are built as whole subtrees by one thread.
@@ -615,14 +618,15 @@ struct TreeGravity {
   }
 
   // The targets [begin, end): the target node `target`, or a group when they are few (or one
-  // leaf).  When `planning`, targets of at most task_grain particles become tasks instead.
+  // leaf).  When `planning`, targets of at most task_grain active particles become tasks instead
+  // (the work of a target is that of its active particles).
   void visit(std::uint32_t begin, std::uint32_t end, std::uint32_t target,
              const std::uint32_t* candidates, std::size_t count, int level, Lists& lists,
              bool planning) {
     if (!any_active(begin, end)) return;  // (no particle here needs its sums)
     const bool group = target == no_node || nodes_[target].leaf ||
                        end - begin <= static_cast<std::uint32_t>(group_size);
-    if (planning && (group || end - begin <= task_grain)) {
+    if (planning && (group || active_in(begin, end) <= task_grain)) {
       tasks_.push_back({target,
                         begin,
                         end,
@@ -738,8 +742,7 @@ struct TreeGravity {
       }
     }
     lists.far_from(centre, length_scale_);
-    const std::size_t summed =
-        active_before_.empty() ? end - begin : active_before_[end] - active_before_[begin];
+    const std::size_t summed = active_in(begin, end);
     lists.particle_pairs += summed * lists.particles;
     lists.node_pairs += summed * lists.nodes;
     ++lists.groups;
