@@ -101,6 +101,10 @@ struct IndividualLeapfrog {
     static_assert(Sim::D == D, "the integrator's dimension must be the scene's");
     auto& p = sim.particles();
     const std::size_t n = p.size();
+    require(limiter == 0 || (std::isfinite(limiter) && limiter >= 1),
+            "individual time steps: the limiter must be 0 (off) or a finite factor of at least "
+            "1 (got " +
+                show(limiter) + ")");
     TimestepLimit shortest{"none", 0, std::numeric_limits<double>::infinity()};
     if (!in_block_) start_block(sim, dt_max);
     require(dt_max >= (block_start_ + block_ - sim.time()) * (1 - 1e-12),

@@ -181,6 +181,21 @@ TEST_CASE("individual time steps: an output time inside a block is refused with 
   CHECK_THROWS_WITH(own.step(1e-9), Catch::Contains("inside a block"));
 }
 
+TEST_CASE("individual time steps: an impossible limiter is refused with a message",
+          "[individual]") {
+  sph::EvrardSetup setup;
+  setup.particles = 500;
+  for (const double limiter : {0.5, -1.0, std::nan("")}) {
+    sph::IndividualLeapfrog<3> integrator;
+    integrator.limiter = limiter;
+    sph::Simulation<StandardOwnSteps> own(
+        sph::make_evrard_sphere(setup), sph::Box<3>::open(),
+        typename Standard::Terms{{}, sph::MonaghanGingold1983{1, 2, 1e-4}},
+        sph::IdealGas{setup.gamma}, integrator);
+    CHECK_THROWS_WITH(own.step(), Catch::Contains("limiter must be 0 (off)"));
+  }
+}
+
 TEST_CASE("individual time steps: each evaluated particle's neighbours are the brute-force ones",
           "[individual]") {
   // Only the particles whose step ends get a new h and a list (neighbour_search.hpp); their
