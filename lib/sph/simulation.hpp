@@ -307,6 +307,8 @@ class Simulation {
   // --- access ------------------------------------------------------------------------------
   const Particles<D>& particles() const { return particles_; }
   Particles<D>& particles() { return particles_; }
+  /// The neighbour list of the last evaluation (with individual time steps, only the particles
+  /// it evaluated have one; the others' lists are empty).
   const NeighbourList<D>& neighbours() const { return search_.list(); }
   /// The neighbour search, e.g. for how often it could reuse its candidates.
   const NeighbourSearch<D, K>& neighbour_search() const { return search_; }
