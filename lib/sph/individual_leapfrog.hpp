@@ -27,11 +27,12 @@
 /// position -- and every particle's v and u are *predicted* at t' from its half-step values
 /// and its last rates, \f$ \mathbf v_i(t') = \mathbf v_i^{1/2} + \mathbf a_i\,(t' - t_i - L_i/2)
 /// \f$ (as GADGET-2 does; for a particle whose step ends at t' this is the leapfrog's own
-/// prediction).  Then the evaluation: smoothing lengths and densities of all particles (cheap,
-/// and the active particles read their neighbours' values), but forces, gravity and the
-/// per-particle terms only for the particles whose step ends at t' (Simulation::evaluate with
-/// an ActiveSet).  These get their closing half kick with the new accelerations.  With every
-/// particle on one level this is the leapfrog of integrators.hpp, the same to round-off.
+/// prediction).  Then the evaluation, only for the particles whose step ends at t'
+/// (Simulation::evaluate with an ActiveSet): their smoothing lengths and neighbours, densities,
+/// forces, gravity and per-particle terms; the others keep theirs from their last step, and
+/// the active particles read them.  These get their closing half kick with the new
+/// accelerations.  With every particle on one level this is the leapfrog of integrators.hpp,
+/// the same to round-off.
 ///
 /// **The limiter.**  A particle on a long step does not notice that a shock has reached it
 /// until its step ends: by then the shock has crossed it.  Saitoh & Makino (2009) showed that
@@ -86,10 +87,6 @@ struct IndividualLeapfrog {
 
   /// Whether every particle's step ends now (the state belongs to one moment).
   bool synchronised() const { return !in_block_; }
-  /// The particles' steps in the present block, in units of its shortest possible step.
-  const std::vector<std::uint64_t>& step_ticks() const { return length_; }
-  /// The length of the present block.
-  double block_length() const { return block_; }
   /// The particles the last step evaluated (whose steps ended then), in increasing order.
   const std::vector<std::uint32_t>& active() const { return active_; }
 
@@ -107,10 +104,12 @@ struct IndividualLeapfrog {
                 show(limiter) + ")");
     TimestepLimit shortest{"none", 0, std::numeric_limits<double>::infinity()};
     if (!in_block_) start_block(sim, dt_max);
-    require(dt_max >= (block_start_ + block_ - sim.time()) * (1 - 1e-12),
+    // (in absolute time: the block's end may lie an ulp past an output time it was cut to)
+    const double block_end = block_start_ + block_;
+    require(sim.time() + dt_max >= block_end - 1e-12 * std::abs(block_end),
             "individual time steps: an output time falls inside a block of steps (a block "
             "ends at " +
-                show(block_start_ + block_) +
+                show(block_end) +
                 "); ask for output times only where the "
                 "particles are synchronised");
     // The particles starting a step now: their lengths, the limiter, the opening kicks.
@@ -130,7 +129,7 @@ struct IndividualLeapfrog {
     for (const std::uint32_t i : active_) start_[i] = next;
     const double before = sim.time();
     now_ = next;
-    const double after = now_ == full_ ? block_start_ + block_ : block_start_ + tick_ * now_;
+    const double after = now_ == full_ ? block_end : block_start_ + tick_ * now_;
     if (now_ == full_) in_block_ = false;
     shortest.dt = after - before;
     return shortest;
@@ -141,11 +140,10 @@ struct IndividualLeapfrog {
   template <class Sim>
   void start_block(Sim& sim, double dt_max) {
     const std::size_t n = sim.particles().size();
-    wanted_.resize(n);
     double longest = 0;
     for (std::size_t i = 0; i < n; ++i) {
-      wanted_[i] = sim.particle_timestep(i).dt;
-      if (std::isfinite(wanted_[i])) longest = std::max(longest, wanted_[i]);
+      const double dt = sim.particle_timestep(i).dt;
+      if (std::isfinite(dt)) longest = std::max(longest, dt);
     }
     require(longest > 0,
             "individual time steps: no particle allows a finite positive step (all at rest "
@@ -172,7 +170,6 @@ struct IndividualLeapfrog {
     for (std::size_t i = 0; i < n; ++i) {
       if (start_[i] == now_) starting_.push_back(static_cast<std::uint32_t>(i));
     }
-    wanted_.resize(n);
     proposed_.assign(n, 0);
     new_length_.resize(starting_.size());
     std::string error;
@@ -181,13 +178,14 @@ struct IndividualLeapfrog {
       const std::size_t i = starting_[k];
       const double dt =
           sim.moves(i) ? sim.particle_timestep(i).dt : std::numeric_limits<double>::infinity();
-      wanted_[i] = dt;
-      proposed_[i] = ticks_within(dt);
+      proposed_[i] = dt > 0 ? ticks_within(dt) : 0;  // (a NaN step is no step)
       if (proposed_[i] == 0) {
 #pragma omp critical(sph_individual_error)
         if (error.empty())
           error = "individual time steps: particle " + show(i) + " needs a step of " + show(dt) +
-                  ", below the shortest level of the block (" + show(tick_) + ")";
+                  (dt > 0 ? ", below the shortest level of the block (" + show(tick_) + ")"
+                          : " (a NaN or a non-positive value in its h, sound speed or "
+                            "acceleration)");
       }
     }
     if (!error.empty()) throw Error(error);
@@ -262,8 +260,7 @@ struct IndividualLeapfrog {
       v_half_[j] -= excess * p.acceleration[j];
       if constexpr (energy) u_half_[j] -= excess * p.energy_rate[j];
       p.position[j] -= drifted * excess * p.acceleration[j];
-      Vec<D> v = v_half_[j];
-      sim.drifted(j, v);
+      sim.drifted(j, v_half_[j]);
       length_[j] = end - start_[j];
     }
   }
@@ -356,7 +353,6 @@ struct IndividualLeapfrog {
   std::vector<std::uint64_t> proposed_;        // what a particle starting now asks for
   std::vector<std::uint64_t> new_length_;
   std::vector<std::uint64_t> least_;  // the shortest new step among a particle's neighbours
-  std::vector<double> wanted_;
   std::vector<std::uint32_t> starting_, active_;
   std::vector<Vec<D>> v_half_;   // v at the middle of each particle's step
   std::vector<double> u_half_;   // u likewise

@@ -40,6 +40,15 @@ struct ModifiedOwnSteps : Modified {
   using Integrator = sph::IndividualLeapfrog<3>;
 };
 
+// The Evrard sphere of `setup` with the standard viscosity and individual time steps.
+sph::Simulation<StandardOwnSteps> standard_own_steps(
+    const sph::EvrardSetup& setup, const sph::IndividualLeapfrog<3>& integrator = {}) {
+  return sph::Simulation<StandardOwnSteps>(
+      sph::make_evrard_sphere(setup), sph::Box<3>::open(),
+      typename Standard::Terms{{}, sph::MonaghanGingold1983{1, 2, 1e-4}},
+      sph::IdealGas{setup.gamma}, integrator);
+}
+
 std::vector<std::uint32_t> every_third(std::size_t n) {
   std::vector<std::uint32_t> list;
   for (std::size_t i = 1; i < n; i += 3) list.push_back(static_cast<std::uint32_t>(i));
@@ -172,10 +181,7 @@ TEST_CASE("individual time steps: an output time inside a block is refused with 
           "[individual]") {
   sph::EvrardSetup setup;
   setup.particles = 1000;
-  sph::Simulation<StandardOwnSteps> own(
-      sph::make_evrard_sphere(setup), sph::Box<3>::open(),
-      typename Standard::Terms{{}, sph::MonaghanGingold1983{1, 2, 1e-4}},
-      sph::IdealGas{setup.gamma});
+  sph::Simulation<StandardOwnSteps> own = standard_own_steps(setup);
   while (own.synchronised() && own.time() < 0.5) own.step();
   REQUIRE_FALSE(own.synchronised());
   CHECK_THROWS_WITH(own.step(1e-9), Catch::Contains("inside a block"));
@@ -188,10 +194,7 @@ TEST_CASE("individual time steps: an impossible limiter is refused with a messag
   for (const double limiter : {0.5, -1.0, std::nan("")}) {
     sph::IndividualLeapfrog<3> integrator;
     integrator.limiter = limiter;
-    sph::Simulation<StandardOwnSteps> own(
-        sph::make_evrard_sphere(setup), sph::Box<3>::open(),
-        typename Standard::Terms{{}, sph::MonaghanGingold1983{1, 2, 1e-4}},
-        sph::IdealGas{setup.gamma}, integrator);
+    sph::Simulation<StandardOwnSteps> own = standard_own_steps(setup, integrator);
     CHECK_THROWS_WITH(own.step(), Catch::Contains("limiter must be 0 (off)"));
   }
 }
@@ -202,10 +205,7 @@ TEST_CASE("individual time steps: each evaluated particle's neighbours are the b
   // lists must hold every pair within 2 max(h_i, h_j), with the h the others kept.
   sph::EvrardSetup setup;
   setup.particles = 1000;
-  sph::Simulation<StandardOwnSteps> own(
-      sph::make_evrard_sphere(setup), sph::Box<3>::open(),
-      typename Standard::Terms{{}, sph::MonaghanGingold1983{1, 2, 1e-4}},
-      sph::IdealGas{setup.gamma});
+  sph::Simulation<StandardOwnSteps> own = standard_own_steps(setup);
   own.run_until(0.7);
   const auto n = static_cast<std::size_t>(setup.particles);
   long partial = 0, compared = 0, wrong = 0, listed_inactive = 0;
