@@ -39,7 +39,8 @@
 /// block steps then fail badly in strong shocks (their point-explosion test), and that it is
 /// enough to keep every particle's step within a factor f (4) of its neighbours'.  Here
 ///  1. a particle that starts a step takes at most f times the shortest step among its
-///     neighbours; and
+///     neighbours -- those in mid-step with their steps, those starting with it with theirs,
+///     which this rule may itself shorten, so it is applied until no length changes; and
 ///  2. when a particle starts a step shorter than 1/f of a neighbour's that is in mid-step,
 ///     that neighbour's step is cut short, to end with the first step of the particle.  Its
 ///     opening kick was given for the longer step, so the excess,
@@ -48,11 +49,15 @@
 ///     Durier & Dalla Vecchia 2012, who showed that without such corrections energy is not
 ///     conserved).  What a term did to v at that kick (`with_kick`) is left as it was.
 ///
-/// **What it costs, and what it breaks.**  Each step still drifts every particle, searches the
-/// neighbours and finds the densities of all, and builds the tree; the forces and the tree walk
-/// are paid for the active particles only.  A pair whose particles are on different levels is
-/// no longer evaluated at the same moment from both sides, so momentum is conserved only to the
-/// accuracy of the integration, not to round-off, and energy only to the order of the scheme.
+/// **What it costs, and what it breaks.**  Each step still drifts and predicts every particle,
+/// checks every particle's candidates for neighbours (NeighbourSearch::update) and builds the
+/// tree from all; the smoothing lengths, lists, densities, forces and the tree walk are paid
+/// for the active particles only.  (Should the neighbour search fall back to a search of all --
+/// a new box or rule -- it settles the h of the inactive particles too, while their densities
+/// and pressures stay those of their last step until it ends.)  A pair whose particles are on
+/// different levels is no longer evaluated at the same moment from both sides, so momentum is
+/// conserved only to the accuracy of the integration, not to round-off, and energy only to the
+/// order of the scheme.
 
 #include "sph/active_set.hpp"
 #include "sph/dimension.hpp"
@@ -89,6 +94,8 @@ struct IndividualLeapfrog {
   bool synchronised() const { return !in_block_; }
   /// The particles the last step evaluated (whose steps ended then), in increasing order.
   const std::vector<std::uint32_t>& active() const { return active_; }
+  /// The length of particle i's present step (the last it began), in units of time.
+  double step_length(std::size_t i) const { return static_cast<double>(length_.at(i)) * tick_; }
 
   /// Advance \p sim to the next moment at which some particles' steps end, no later than
   /// \p dt_max from now.  Returns that advance, with the criterion and particle of the shortest
@@ -189,22 +196,32 @@ struct IndividualLeapfrog {
       }
     }
     if (!error.empty()) throw Error(error);
+    // The limiter, in sweeps until nothing changes: a neighbour in mid-step counts with its
+    // step, one starting now with its length of the last sweep (at first what it wants).  A
+    // particle shortened for its neighbour may shorten its own other neighbours in the next
+    // sweep; lengths only fall, so the sweeps end, and each reads only the last one's lengths,
+    // so the result does not depend on the number of threads.
     const auto& list = sim.neighbours();
-#pragma omp parallel for schedule(static) if (n >= parallel_threshold)
-    for (std::size_t k = 0; k < starting_.size(); ++k) {
-      const std::size_t i = starting_[k];
-      std::uint64_t length = proposed_[i];
-      if (limiter > 0) {
-        // (a neighbour in mid-step counts with its step, one starting now with what it wants)
-        std::uint64_t least = full_;
-        for (const auto& nb : list.of(i)) {
-          const std::size_t j = nb.index;
-          least = std::min(least, proposed_[j] > 0 ? proposed_[j] : length_[j]);
+    for (bool changed = true; changed;) {
+      int shortened = 0;
+#pragma omp parallel for schedule(static) reduction(| : shortened) if (n >= parallel_threshold)
+      for (std::size_t k = 0; k < starting_.size(); ++k) {
+        const std::size_t i = starting_[k];
+        std::uint64_t length = proposed_[i];
+        if (limiter > 0) {
+          std::uint64_t least = full_;
+          for (const auto& nb : list.of(i)) {
+            const std::size_t j = nb.index;
+            least = std::min(least, proposed_[j] > 0 ? proposed_[j] : length_[j]);
+          }
+          length = std::min(length, ticks_within(limiter * static_cast<double>(least) * tick_));
         }
-        length = std::min(length, ticks_within(limiter * static_cast<double>(least) * tick_));
+        while (now_ % length != 0) length /= 2;  // (the levels nest)
+        new_length_[k] = length;
+        shortened |= length != proposed_[i];
       }
-      while (now_ % length != 0) length /= 2;  // (the levels nest)
-      new_length_[k] = length;
+      changed = limiter > 0 && shortened != 0;
+      for (std::size_t k = 0; k < starting_.size(); ++k) proposed_[starting_[k]] = new_length_[k];
     }
     for (std::size_t k = 0; k < starting_.size(); ++k) {
       const std::size_t i = starting_[k];

@@ -7,6 +7,7 @@
 #include "sph/gravity/tree.hpp"
 #include "sph/individual_leapfrog.hpp"
 #include "sph/setups/evrard.hpp"
+#include "sph/setups/sedov.hpp"
 #include "sph/simulation.hpp"
 #include "sph/diagnostics.hpp"
 #include "sph/terms/pressure.hpp"
@@ -237,4 +238,56 @@ TEST_CASE("individual time steps: each evaluated particle's neighbours are the b
   CHECK(compared > 0);
   CHECK(wrong == 0);
   CHECK(listed_inactive == 0);
+}
+
+// A point explosion in cold gas (Saitoh & Makino's test of the limiter): the hot particles
+// need steps far shorter than the gas around them.
+struct Blast : sph::Scene<3> {
+  using Terms = sph::Terms<sph::PressureOwnWork, sph::MonaghanGingold1983>;
+  using Integrator = sph::IndividualLeapfrog<3>;
+};
+
+TEST_CASE("individual time steps: particles that start together are within the limiter's factor",
+          "[individual]") {
+  // The particles whose steps end at one moment start their next steps together, and each
+  // takes at most `limiter` times the step of any neighbour starting with it -- also when that
+  // neighbour's own step was shortened for a third particle (the limiter is applied until
+  // nothing changes).  The lists are those of the evaluation that ended their steps.
+  sph::SedovSetup setup;
+  setup.cells = 10;
+  const auto rule = sph::SmoothingLengthRule::neighbour_number(40);
+  sph::SedovBlast<3> blast = sph::make_sedov_blast<3>(setup, rule);
+  const auto n = blast.particles.size();
+  sph::Settings settings;
+  settings.smoothing = rule;
+  sph::Simulation<Blast> own(std::move(blast.particles), blast.box,
+                             Blast::Terms{{}, sph::MonaghanGingold1983{1, 2, 1e-4}},
+                             sph::IdealGas{setup.gamma}, settings);
+  const double limiter = own.integrator().limiter;
+  long pairs = 0, beyond = 0;
+  double worst = 0;
+  std::vector<std::pair<std::uint32_t, std::uint32_t>> listed;  // neighbours starting together
+  for (int s = 0; s < 150; ++s) {
+    own.step();
+    for (const auto& [i, j] : listed) {
+      const double ratio = own.integrator().step_length(i) / own.integrator().step_length(j);
+      ++pairs;
+      beyond += ratio > limiter;
+      worst = std::max(worst, ratio);
+    }
+    std::vector<std::uint8_t> starts(n, 0);
+    for (const std::uint32_t i : own.integrator().active()) starts[i] = 1;
+    listed.clear();
+    for (const std::uint32_t i : own.integrator().active()) {
+      for (const auto& nb : own.neighbours().of(i)) {
+        if (starts[nb.index]) listed.emplace_back(i, static_cast<std::uint32_t>(nb.index));
+      }
+    }
+  }
+  std::printf(
+      "  point explosion, %zu particles, 150 steps to t = %.3g: %ld pairs starting together, "
+      "%ld of them more than %g times apart; largest ratio %g\n",
+      n, own.time(), pairs, beyond, limiter, worst);
+  CHECK(pairs > 0);
+  CHECK(beyond == 0);
 }
