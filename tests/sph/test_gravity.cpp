@@ -278,6 +278,60 @@ TEST_CASE("the tree's force error against direct summation, uniform and 1/r sphe
   CHECK(ec.max <= 7e-3);
 }
 
+TEST_CASE("the tree's relative criterion: a smaller largest error with fewer interactions",
+          "[gravity]") {
+  // GADGET-2's criterion bounds each node's error against the particle's last |a|: where the
+  // pulls cancel it opens more, where one pull dominates less.  Its first evaluation has no
+  // accelerations and is the geometric one, to the bit; from the second on it meets the targets
+  // with fewer interactions on both spheres, and on the uniform one, where the pulls cancel at
+  // the centre, with a smaller largest error than the geometric default's.
+  const Reference& uniform = uniform_sphere();
+  const auto cusp = ball(10000, 12, true);
+  sph::DirectGravity direct;
+  const auto cusp_direct = with_gravity(cusp, direct);
+  std::printf("relative criterion, alpha = %g, against the geometric default:\n",
+              sph::TreeGravity::default_relative_accuracy);
+  std::printf("  %-30s %9s %9s %9s %9s %9s %7s %7s\n", "", "p50", "p90", "p99", "max", "max |a|>",
+              "pp", "pn");
+  for (const bool on_cusp : {false, true}) {
+    const sph::Particles<3>& p = on_cusp ? cusp : uniform.particles;
+    const sph::Particles<3>& reference = on_cusp ? cusp_direct : uniform.direct;
+    sph::TreeGravity geometric, relative;
+    relative.criterion = sph::TreeGravity::Criterion::relative;
+    const auto g = with_gravity(p, geometric);
+    const auto first = with_gravity(p, relative);
+    CHECK_FALSE(relative.statistics().relative);
+    CHECK(first.acceleration == g.acceleration);
+    const auto second = with_gravity(p, relative);
+    CHECK(relative.statistics().relative);
+    const auto eg = relative_errors(g, reference), er = relative_errors(second, reference);
+    print(on_cusp ? "1/r, geometric default" : "uniform, geometric default", eg, geometric);
+    print(on_cusp ? "1/r, relative" : "uniform, relative", er, relative);
+    check_targets(er);
+    if (!on_cusp) CHECK(er.max < 0.5 * eg.max);
+    const auto work = [](const sph::TreeGravity& t) {
+      return t.statistics().particle_interactions + t.statistics().node_interactions;
+    };
+    CHECK(work(relative) < work(geometric));
+  }
+  // Bitwise the same with 1 and 2 threads, as the geometric walk.
+  const int saved = omp_get_max_threads();
+  const auto run = [&cusp](int threads) {
+    omp_set_num_threads(threads);
+    sph::TreeGravity tree;
+    tree.criterion = sph::TreeGravity::Criterion::relative;
+    with_gravity(cusp, tree);
+    return with_gravity(cusp, tree).acceleration;
+  };
+  const auto one = run(1), two = run(2);
+  omp_set_num_threads(saved);
+  CHECK(one == two);
+  // An impossible alpha is refused.
+  sph::TreeGravity bad;
+  bad.relative_accuracy = 0;
+  CHECK_THROWS_WITH(with_gravity(cusp, bad), Catch::Contains("alpha must be positive"));
+}
+
 TEST_CASE("the tree's potential energy and momentum", "[gravity]") {
   const Reference& uniform = uniform_sphere();
   sph::TreeGravity tree;

@@ -5,11 +5,12 @@
 /// cost of one evaluation against the number of particles (app::save_tree_cost_figure).
 ///
 /// The first is the figure a reader needs to choose the opening angle \f$ \theta \f$: the 99th
-/// percentile and the largest relative force error, for monopoles (red) and quadrupoles
-/// (blue), against \f$ \theta \f$ (left) and against the time of one evaluation relative to
-/// direct summation (right), with the two accuracy targets as dotted lines.  The second draws
-/// the wall times of both methods on log-log axes with \f$ N^2 \f$ and \f$ N\log N \f$ guides
-/// through their middle points.
+/// percentile and the largest relative force error, for monopoles (red) and quadrupoles (blue),
+/// against \f$ \theta \f$ (left) and against the time of one evaluation relative to direct
+/// summation (right), with the two accuracy targets as dotted lines; on the right also the relative
+/// criterion (green, quadrupoles, one point for each \f$ \alpha \f$).  The second draws the wall
+/// times of both methods on log-log axes with \f$ N^2 \f$ and \f$ N\log N \f$ guides through their
+/// middle points.
 ///
 /// Header-only: a chapter that includes it links sph_plot.
 
@@ -27,8 +28,9 @@ namespace app {
 /// \f$ |\mathbf a_\mathrm{tree} - \mathbf a_\mathrm{direct}|/|\mathbf a_\mathrm{direct}| \f$
 /// over the particles, and what the evaluation cost.
 struct TreeAccuracy {
-  double theta = 0;                           ///< the opening angle
-  bool quadrupole = true;                     ///< false: monopoles only
+  double theta = 0;        ///< the opening angle
+  double alpha = 0;        ///< alpha of the relative criterion (0: the geometric one, at theta)
+  bool quadrupole = true;  ///< false: monopoles only
   double p50 = 0, p90 = 0, p99 = 0, max = 0;  ///< median, 90th, 99th percentile, maximum
   double potential = 0;                       ///< relative error of the potential energy
   double relative_time = 0;                   ///< the tree's wall time over direct summation's
@@ -44,7 +46,7 @@ inline void draw_order(plot::Axes& ax, const std::vector<TreeAccuracy>& rows, bo
                        bool against_theta) {
   std::vector<double> x, p99, max;
   for (const TreeAccuracy& r : rows) {
-    if (r.quadrupole != quadrupole) continue;
+    if (r.quadrupole != quadrupole || r.alpha > 0) continue;
     x.push_back(against_theta ? r.theta : r.relative_time);
     p99.push_back(r.p99);
     max.push_back(r.max);
@@ -77,6 +79,26 @@ inline void draw_order(plot::Axes& ax, const std::vector<TreeAccuracy>& rows, bo
   }
 }
 
+/// The relative criterion's 99th percentile and maximum error against the relative time.
+inline void draw_relative(plot::Axes& ax, const std::vector<TreeAccuracy>& rows) {
+  std::vector<double> x, p99, max;
+  for (const TreeAccuracy& r : rows) {
+    if (!(r.alpha > 0)) continue;
+    x.push_back(r.relative_time);
+    p99.push_back(r.p99);
+    max.push_back(r.max);
+  }
+  if (x.empty()) return;
+  ax.scatter(x, p99,
+             {.label = "relative criterion, 99th percentile", .color = plot::green, .size = 9});
+  ax.scatter(x, max,
+             {.label = "relative criterion, maximum",
+              .color = plot::green,
+              .size = 9,
+              .marker = plot::Marker::square,
+              .filled = false});
+}
+
 }  // namespace tree_accuracy_detail
 
 /// Draws the tree's error against the opening angle (left) and against its relative cost
@@ -104,6 +126,7 @@ inline void save_tree_accuracy_figure(const std::string& path,
     }
     for (bool quadrupole : {false, true})
       tree_accuracy_detail::draw_order(ax, rows, quadrupole, panel == 0);
+    if (panel == 1) tree_accuracy_detail::draw_relative(ax, rows);
     ax.hline(3e-3, {.label = "targets: 99th percentile 3\\times10^{-3}, maximum 7\\times10^{-3}",
                     .color = plot::Color{0.45, 0.45, 0.45},
                     .style = plot::Dash::dotted});

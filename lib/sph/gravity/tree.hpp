@@ -42,6 +42,23 @@
 /// interacts particle by particle: Newton's force for the pairs beyond both kernels' support, the
 /// softened pair force of gravity/softening.hpp for the others.
 ///
+/// **The relative criterion** (Springel 2005, GADGET-2), an option.  The geometric criterion
+/// bounds each node's error relative to that node's own pull, so a particle whose total pull
+/// is small -- near the centre of a sphere, where the pulls of all sides cancel -- gets a large
+/// relative error, while a particle under a strong pull gets more accuracy than it needs.  The
+/// relative criterion bounds the error against the particle's own acceleration instead: with
+/// \f$ |\mathbf a_i| \f$ from its last evaluation, a node of mass M is accepted where the
+/// first term the expansion leaves out is small against it,
+/// \f[ \frac{GM}{d^2}\left(\frac{r_\mathrm{max}}{d}\right)^{p} \le \alpha\,|\mathbf a_i|,
+///     \qquad p = 2 \text{ (monopoles)},\ 3 \text{ (quadrupoles)}, \f]
+/// and, as before, where no particle of the node is within the softening range, and the node's
+/// sphere does not reach the particle (\f$ d > r_\mathrm{max} \f$: GADGET-2's test that the
+/// particle is not inside the node).  It needs a first evaluation: one without accelerations of
+/// the same particles (the first, or another particle count), and any particle whose last
+/// acceleration is zero, uses the geometric criterion.  A target of the walk uses its smallest
+/// \f$ |\mathbf a| \f$.  The result then depends on the last evaluation, still the same for
+/// any number of threads.
+///
 /// **How small must theta be?**  On a random uniform sphere of \f$ 10^4 \f$ particles
 /// (tests/sph/test_gravity.cpp) the default \f$ \theta = 0.3 \f$ with quadrupoles gives a
 /// median relative force error of \f$ 1.2\times10^{-4} \f$, a 99th percentile of
@@ -143,12 +160,19 @@ struct TreeGravity {
     double particle_interactions = 0;
     /// Mean particle-node interactions per particle (multipoles).
     double node_interactions = 0;
+    bool relative = false;     ///< whether the walk used the relative criterion
     double build_seconds = 0;  ///< sorting the particles into the tree, the nodes' moments
     double walk_seconds = 0;   ///< the walks and the sums over their lists
   };
 
   /// theta: on a uniform sphere the 99th percentile of the relative force error is 7e-4 (above).
   static constexpr double default_opening_angle = 0.3;
+  /// Which opening criterion the walk uses (see the file comment).
+  enum class Criterion { geometric, relative };
+  /// alpha of the relative criterion: on a random uniform sphere of 10^4 particles a largest
+  /// error a third of the geometric default's, on a 1/r sphere 1.3 times, both with a fifth
+  /// fewer interactions (tests/sph/test_gravity.cpp).
+  static constexpr double default_relative_accuracy = 1e-3;
   /// Leaves of at most 12 particles and groups of at most 16: the fastest on the bench, within
   /// a few per cent of leaves of 8 to 16 and groups of 12 to 32.
   static constexpr int default_leaf_size = 12;
@@ -163,6 +187,8 @@ struct TreeGravity {
   int group_size = default_group_size;           ///< particles that share their lists, at most
   /// A softening length for every particle; 0 (the default): each particle's smoothing length.
   double fixed_softening = 0.0;
+  Criterion criterion = Criterion::geometric;            ///< geometric (theta) or relative (alpha)
+  double relative_accuracy = default_relative_accuracy;  ///< alpha of the relative criterion
 
   TreeGravity() = default;
   explicit TreeGravity(double theta, Order far_field = Order::quadrupole,
@@ -185,6 +211,9 @@ struct TreeGravity {
     require(std::isfinite(fixed_softening) && fixed_softening >= 0,
             "tree gravity: the fixed softening length must be finite and >= 0 (got " +
                 show(fixed_softening) + ")");
+    require(std::isfinite(relative_accuracy) && relative_accuracy > 0,
+            "tree gravity: the relative criterion's alpha must be positive and finite (got " +
+                show(relative_accuracy) + ")");
   }
 
   /// Adds \f$ -\nabla\Phi_i \f$ to the acceleration of every particle of \p active (all by
@@ -227,11 +256,13 @@ struct TreeGravity {
     std::uint16_t depth;
     bool leaf;
   };
-  // What the far field needs of a node once it is accepted.
+  // What the far field needs of a node once it is accepted, and the relative criterion.
   struct Multipole {
     double com[3];  // centre of mass
     float mass;     // in the tree's units (see units())
     float quad[6];  // traceless quadrupole about com, xx, xy, xz, yy, yz, zz, in the same units
+    float error;    // the relative criterion's M r_max^p, in the same units
+    float a_min;    // the least |a| of its particles' last evaluation (0: none), likewise
   };
   // Nodes built by one thread, numbered from 0.
   struct Subtree {
@@ -319,6 +350,7 @@ struct TreeGravity {
     const auto start = std::chrono::steady_clock::now();
     build(p);
     mark_active(active);
+    if (last_acceleration_.size() != n) last_acceleration_.assign(n, 0.0);
     // (1/h in tree order: a softened pair then costs one division, 1/r; see softening.hpp)
     inv_h_.resize(n);
     for (std::size_t t = 0; t < n; ++t) inv_h_[t] = 1.0 / h_[t];
@@ -330,6 +362,7 @@ struct TreeGravity {
       const std::size_t i = index_[t];
       p.acceleration[i] += G * Vec<3>(ax_[t], ay_[t], az_[t]);
       potential_[i] = G * phi_[t];
+      last_acceleration_[i] = G * std::sqrt(ax_[t] * ax_[t] + ay_[t] * ay_[t] + az_[t] * az_[t]);
     }
     const auto done = std::chrono::steady_clock::now();
     statistics_.build_seconds = std::chrono::duration<double>(built - start).count();
@@ -372,7 +405,7 @@ struct TreeGravity {
     const std::size_t n = p.size();
     // The particles' data, one array per quantity, sorted into tree order as the tree is built
     // (each node's particles side by side).
-    for (auto* v : {&x_, &y_, &z_, &m_, &h_, &sx_, &sy_, &sz_, &sm_, &sh_}) v->resize(n);
+    for (auto* v : {&x_, &y_, &z_, &m_, &h_, &a_, &sx_, &sy_, &sz_, &sm_, &sh_, &sa_}) v->resize(n);
     index_.resize(n), sindex_.resize(n);
     for (std::size_t i = 0; i < n; ++i) {
       x_[i] = p.position[i][0], y_[i] = p.position[i][1], z_[i] = p.position[i][2];
@@ -380,6 +413,14 @@ struct TreeGravity {
       index_[i] = static_cast<std::uint32_t>(i);
     }
     units();
+    // The relative criterion needs every particle's last |a| (in the tree's units, without G).
+    relative_ = criterion == Criterion::relative && last_acceleration_.size() == n;
+    const double to_units = mass_scale_ / (length_scale_ * length_scale_ * G);
+    for (std::size_t i = 0; i < n; ++i) {
+      const double a = relative_ ? last_acceleration_[i] * to_units : 0.0;
+      a_[i] = std::isfinite(a) ? a : 0.0;
+    }
+    statistics_.relative = relative_;
     // The top, by one thread; then the subtrees below it, each by one thread into its own
     // arrays; then all joined in depth-first order.
     top_entries_.clear();
@@ -487,11 +528,12 @@ struct TreeGravity {
     Multipole pole{};
     node.begin = begin, node.end = end;
     node.depth = static_cast<std::uint16_t>(depth);
-    double mass = 0, mx = 0, my = 0, mz = 0;
+    double mass = 0, mx = 0, my = 0, mz = 0, a_min = a_[begin];
     double lower[3] = {x_[begin], y_[begin], z_[begin]};
     double upper[3] = {x_[begin], y_[begin], z_[begin]};
     for (std::uint32_t t = begin; t < end; ++t) {
       mass += m_[t];
+      a_min = std::min(a_min, a_[t]);
       mx += m_[t] * x_[t], my += m_[t] * y_[t], mz += m_[t] * z_[t];
       node.h_max = std::max(node.h_max, h_[t]);
       lower[0] = std::min(lower[0], x_[t]), upper[0] = std::max(upper[0], x_[t]);
@@ -520,6 +562,10 @@ struct TreeGravity {
     for (int c = 0; c < 6; ++c)
       pole.quad[c] = static_cast<float>(quad[c] * mass_scale_ * length_scale_ * length_scale_);
     node.r_max = std::sqrt(r2_max);
+    const double size = node.r_max * length_scale_;
+    pole.error =
+        static_cast<float>(pole.mass * size * size * (order == Order::quadrupole ? size : 1));
+    pole.a_min = static_cast<float>(a_min);
     // (the last term keeps every accepted node farther than closest_: see units())
     node.reach = std::max(
         {node.r_max / opening_angle, node.r_max + 2.0 * node.h_max, closest_ / length_scale_});
@@ -552,25 +598,39 @@ struct TreeGravity {
       const std::uint32_t s = next[octant(t)]++;
       sx_[s] = x_[t], sy_[s] = y_[t], sz_[s] = z_[t], sm_[s] = m_[t], sh_[s] = h_[t];
       sindex_[s] = index_[t];
+      if (relative_) sa_[s] = a_[t];
     }
     for (std::uint32_t t = begin; t < end; ++t) {
       x_[t] = sx_[t], y_[t] = sy_[t], z_[t] = sz_[t], m_[t] = sm_[t], h_[t] = sh_[t];
       index_[t] = sindex_[t];
     }
+    if (relative_) std::copy(sa_.begin() + begin, sa_.begin() + end, a_.begin() + begin);
     return true;
   }
 
   // --- walking ------------------------------------------------------------------------------
   // Whether every particle inside the sphere (centre c, radius r, largest smoothing length
-  // h_s) may use `node` as a multipole.  With d the distance between the centres, both
-  // conditions of the criterion at the sphere's nearest point, d - r, read
-  // \f$ d - r > \max(r_\mathrm{max}/\theta,\; r_\mathrm{max} + 2h_\mathrm{max},\;
-  // r_\mathrm{max} + 2h_s) \f$; the first two terms do not depend on the sphere and are kept in
-  // Node::reach.
-  static bool accepts(const Node& node, const double* c, double r, double two_h_s) {
+  // h_s, least last acceleration a_s in the tree's units) may use node k as a multipole.  With d
+  // the distance between the centres, both conditions of the geometric criterion at the
+  // sphere's nearest point, d - r, read \f$ d - r > \max(r_\mathrm{max}/\theta,\;
+  // r_\mathrm{max} + 2h_\mathrm{max},\; r_\mathrm{max} + 2h_s) \f$; the first two terms do not
+  // depend on the sphere and are kept in Node::reach.  The relative criterion (where a_s > 0)
+  // keeps the softening range, and the nearest point beyond the node's sphere, and asks
+  // \f$ M r_\mathrm{max}^p \le \alpha\, a_s\, (d - r)^{p+2} \f$.
+  bool accepts(std::uint32_t k, const double* c, double r, double two_h_s, double a_s) const {
+    const Node& node = nodes_[k];
     const double dx = node.com[0] - c[0], dy = node.com[1] - c[1], dz = node.com[2] - c[2];
-    const double needed = r + std::max(node.reach, node.r_max + two_h_s);
-    return dx * dx + dy * dy + dz * dz > needed * needed;
+    const double d2 = dx * dx + dy * dy + dz * dz;
+    if (!(relative_ && a_s > 0)) {
+      const double needed = r + std::max(node.reach, node.r_max + two_h_s);
+      return d2 > needed * needed;
+    }
+    const double needed =
+        r + std::max(node.r_max + std::max(2.0 * node.h_max, two_h_s), closest_ / length_scale_);
+    if (!(d2 > needed * needed)) return false;
+    const double s = (std::sqrt(d2) - r) * length_scale_, s2 = s * s;
+    const double reach = s2 * s2 * (order == Order::quadrupole ? s : 1.0);
+    return multipoles_[k].error <= relative_accuracy * a_s * reach;
   }
 
   // A piece of the walk left to one thread: a target node, or a group, with its candidates
@@ -652,7 +712,7 @@ struct TreeGravity {
     for (std::size_t q = 0; q < queue.size(); ++q) {
       const std::uint32_t s = queue[q];
       const Node& source = nodes_[s];
-      if (accepts(source, t.com, t.r_max, 2.0 * t.h_max)) {
+      if (accepts(s, t.com, t.r_max, 2.0 * t.h_max, multipoles_[target].a_min)) {
         lists.push_node(s, multipoles_[s]);
       } else if (source.leaf || source.r_max < t.r_max) {
         next.push_back(s);
@@ -689,10 +749,11 @@ struct TreeGravity {
   void sum_group(std::uint32_t begin, std::uint32_t end, const std::uint32_t* candidates,
                  std::size_t count, Lists& lists) {
     // The group's sphere: centre of mass, radius about it, largest smoothing length.
-    double mass = 0, mx = 0, my = 0, mz = 0, h_g = 0;
+    double mass = 0, mx = 0, my = 0, mz = 0, h_g = 0, a_g = a_[begin];
     for (std::uint32_t t = begin; t < end; ++t) {
       mass += m_[t], mx += m_[t] * x_[t], my += m_[t] * y_[t], mz += m_[t] * z_[t];
       h_g = std::max(h_g, h_[t]);
+      a_g = std::min(a_g, a_[t]);
     }
     const double centre[3] = {mx / mass, my / mass, mz / mass};
     double r2_max = 0;
@@ -709,7 +770,7 @@ struct TreeGravity {
       const std::uint32_t last = nodes_[candidates[c]].skip;
       for (std::uint32_t k = candidates[c]; k < last;) {
         const Node& node = nodes_[k];
-        if (accepts(node, centre, r_g, two_h_g)) {
+        if (accepts(k, centre, r_g, two_h_g, a_g)) {
           lists.push_node(k, multipoles_[k]);
           k = node.skip;
         } else if (node.leaf) {
@@ -877,6 +938,7 @@ struct TreeGravity {
   std::vector<Multipole> multipoles_;
   // The particles in tree order, and the particle index of each tree position.
   std::vector<double> x_, y_, z_, m_, h_;
+  std::vector<double> a_;  // the last |a| in the tree's units (0: none), for the relative criterion
   std::vector<std::uint32_t> index_;
   std::vector<double> inv_h_;  // 1/h, in tree order
   // The active particles (see mark_active).
@@ -888,7 +950,7 @@ struct TreeGravity {
   double length_scale_ = 1, mass_scale_ = 1;
   static constexpr double closest_ = 0x1p-40;
   // Room for sorting (the same quantities), and the build's bookkeeping.
-  std::vector<double> sx_, sy_, sz_, sm_, sh_;
+  std::vector<double> sx_, sy_, sz_, sm_, sh_, sa_;
   std::vector<std::uint32_t> sindex_;
   Subtree top_;
   std::vector<TopEntry> top_entries_;
@@ -901,6 +963,10 @@ struct TreeGravity {
   // Results in tree order (without G), and Phi_i in the particles' order.
   std::vector<double> ax_, ay_, az_, phi_;
   std::vector<double> potential_;
+  // |a_i| of each particle's last evaluation (0: never), in the particles' order, and whether
+  // this evaluation uses the relative criterion.
+  std::vector<double> last_acceleration_;
+  bool relative_ = false;
   Statistics statistics_;
 };
 
