@@ -49,8 +49,8 @@
 /// relative criterion bounds the error against the particle's own acceleration instead: with
 /// \f$ |\mathbf a_i| \f$ from its last evaluation, a node of mass M is accepted where the
 /// first term the expansion leaves out is small against it,
-/// \f[ \frac{GM}{d^2}\left(\frac{r_\mathrm{max}}{d}\right)^{p} \le \alpha\,|\mathbf a_i|,
-///     \qquad p = 2 \text{ (monopoles)},\ 3 \text{ (quadrupoles)}, \f]
+/// \f[ \frac{GM}{d^2}\left(\frac{r_\mathrm{max}}{d}\right)^{p+1} \le \alpha\,|\mathbf a_i|,
+///     \qquad p = 1 \text{ (monopoles)},\ 2 \text{ (quadrupoles)}, \f]
 /// and, as before, where no particle of the node is within the softening range, and the node's
 /// sphere does not reach the particle (\f$ d > r_\mathrm{max} \f$: GADGET-2's test that the
 /// particle is not inside the node).  It needs a first evaluation: one without accelerations of
@@ -170,7 +170,7 @@ struct TreeGravity {
   /// Which opening criterion the walk uses (see the file comment).
   enum class Criterion { geometric, relative };
   /// alpha of the relative criterion: on a random uniform sphere of 10^4 particles a largest
-  /// error a third of the geometric default's, on a 1/r sphere 1.3 times, both with a fifth
+  /// error a third of the geometric default's, on a 1/r sphere 1.3 times, with 14 % and 20 %
   /// fewer interactions (tests/sph/test_gravity.cpp).
   static constexpr double default_relative_accuracy = 1e-3;
   /// Leaves of at most 12 particles and groups of at most 16: the fastest on the bench, within
@@ -261,7 +261,7 @@ struct TreeGravity {
     double com[3];  // centre of mass
     float mass;     // in the tree's units (see units())
     float quad[6];  // traceless quadrupole about com, xx, xy, xz, yy, yz, zz, in the same units
-    float error;    // the relative criterion's M r_max^p, in the same units
+    float error;    // the relative criterion's M r_max^(p+1) (p: the order kept), in the same units
     float a_min;    // the least |a| of its particles' last evaluation (0: none), likewise
   };
   // Nodes built by one thread, numbered from 0.
@@ -565,7 +565,9 @@ struct TreeGravity {
     const double size = node.r_max * length_scale_;
     pole.error =
         static_cast<float>(pole.mass * size * size * (order == Order::quadrupole ? size : 1));
+    // (rounded down: a target's least |a| must not exceed any of its particles')
     pole.a_min = static_cast<float>(a_min);
+    if (static_cast<double>(pole.a_min) > a_min) pole.a_min = std::nextafter(pole.a_min, 0.0f);
     // (the last term keeps every accepted node farther than closest_: see units())
     node.reach = std::max(
         {node.r_max / opening_angle, node.r_max + 2.0 * node.h_max, closest_ / length_scale_});
@@ -616,7 +618,7 @@ struct TreeGravity {
   // r_\mathrm{max} + 2h_\mathrm{max},\; r_\mathrm{max} + 2h_s) \f$; the first two terms do not
   // depend on the sphere and are kept in Node::reach.  The relative criterion (where a_s > 0)
   // keeps the softening range, and the nearest point beyond the node's sphere, and asks
-  // \f$ M r_\mathrm{max}^p \le \alpha\, a_s\, (d - r)^{p+2} \f$.
+  // \f$ M r_\mathrm{max}^{p+1} \le \alpha\, a_s\, (d - r)^{p+3} \f$.
   bool accepts(std::uint32_t k, const double* c, double r, double two_h_s, double a_s) const {
     const Node& node = nodes_[k];
     const double dx = node.com[0] - c[0], dy = node.com[1] - c[1], dz = node.com[2] - c[2];
