@@ -99,7 +99,7 @@ inline void bench_evrard(bool quick) {
     bench_evrard_scene<EvrardModified>(n, {{}, {2, 1e-4}, {1, 64}}, "modified", quick);
   }
   // The tree's relative opening criterion (GADGET-2's) at its default alpha: on the collapsed
-  // centre it needs a third fewer interactions than theta = 0.3 for the same largest error.
+  // centre it takes 44 % fewer multipoles than theta = 0.3 for a smaller largest error.
   sph::TreeGravity relative;
   relative.criterion = sph::TreeGravity::Criterion::relative;
   bench_evrard_scene<EvrardStandard>(quick ? 8192 : 22000, {{}, standard}, "standard, relative",

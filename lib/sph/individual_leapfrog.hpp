@@ -185,7 +185,7 @@ struct IndividualLeapfrog {
       const std::size_t i = starting_[k];
       const double dt =
           sim.moves(i) ? sim.particle_timestep(i).dt : std::numeric_limits<double>::infinity();
-      proposed_[i] = dt > 0 ? ticks_within(dt) : 0;  // (a NaN step is no step)
+      proposed_[i] = dt > 0 ? nested(ticks_within(dt)) : 0;  // (a NaN step is no step)
       if (proposed_[i] == 0) {
 #pragma omp critical(sph_individual_error)
         if (error.empty())
@@ -216,7 +216,7 @@ struct IndividualLeapfrog {
           }
           length = std::min(length, ticks_within(limiter * static_cast<double>(least) * tick_));
         }
-        while (now_ % length != 0) length /= 2;  // (the levels nest)
+        length = nested(length);
         new_length_[k] = length;
         shortened |= length != proposed_[i];
       }
@@ -233,6 +233,13 @@ struct IndividualLeapfrog {
         shortest = {dt < own.dt * 0.5 ? "neighbour's step (limiter)" : own.criterion, i, dt};
       }
     }
+  }
+
+  // The longest step of at most `length` ticks that starts now (the levels nest: a step of
+  // length L starts at a multiple of L).
+  std::uint64_t nested(std::uint64_t length) const {
+    while (length > 0 && now_ % length != 0) length /= 2;
+    return length;
   }
 
   // The longest power of two of ticks, at most a whole block, not longer than dt (0 if dt is

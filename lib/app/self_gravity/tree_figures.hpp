@@ -40,6 +40,20 @@ struct TreeAccuracy {
 
 namespace tree_accuracy_detail {
 
+/// A 99th percentile (filled circles) and a maximum (open squares) against measured times:
+/// markers only, since the times are noisy.
+inline void scatter_errors(plot::Axes& ax, const std::vector<double>& x,
+                           const std::vector<double>& p99, const std::vector<double>& max,
+                           const std::string& name, plot::Color color) {
+  ax.scatter(x, p99, {.label = name + ", 99th percentile", .color = color, .size = 9});
+  ax.scatter(x, max,
+             {.label = name + ", maximum",
+              .color = color,
+              .size = 9,
+              .marker = plot::Marker::square,
+              .filled = false});
+}
+
 /// One multipole order's 99th percentile and maximum error, against the opening angle
 /// (\p against_theta, lines) or against the relative time (markers: measured times are noisy).
 inline void draw_order(plot::Axes& ax, const std::vector<TreeAccuracy>& rows, bool quadrupole,
@@ -68,14 +82,8 @@ inline void draw_order(plot::Axes& ax, const std::vector<TreeAccuracy>& rows, bo
              .marker = plot::Marker::square,
              .marker_size = 6,
              .marker_filled = false});
-  } else {  // (the times are measured, with their noise: markers only)
-    ax.scatter(x, p99, {.label = name + ", 99th percentile", .color = color, .size = 9});
-    ax.scatter(x, max,
-               {.label = name + ", maximum",
-                .color = color,
-                .size = 9,
-                .marker = plot::Marker::square,
-                .filled = false});
+  } else {
+    scatter_errors(ax, x, p99, max, name, color);
   }
 }
 
@@ -88,15 +96,7 @@ inline void draw_relative(plot::Axes& ax, const std::vector<TreeAccuracy>& rows)
     p99.push_back(r.p99);
     max.push_back(r.max);
   }
-  if (x.empty()) return;
-  ax.scatter(x, p99,
-             {.label = "relative criterion, 99th percentile", .color = plot::green, .size = 9});
-  ax.scatter(x, max,
-             {.label = "relative criterion, maximum",
-              .color = plot::green,
-              .size = 9,
-              .marker = plot::Marker::square,
-              .filled = false});
+  if (!x.empty()) scatter_errors(ax, x, p99, max, "relative criterion", plot::green);
 }
 
 }  // namespace tree_accuracy_detail

@@ -350,7 +350,12 @@ struct TreeGravity {
     const auto start = std::chrono::steady_clock::now();
     build(p);
     mark_active(active);
-    if (last_acceleration_.size() != n) last_acceleration_.assign(n, 0.0);
+    // (kept only for the relative criterion; a later switch to it starts with theta)
+    if (criterion != Criterion::relative) {
+      last_acceleration_.clear();
+    } else if (last_acceleration_.size() != n) {
+      last_acceleration_.assign(n, 0.0);
+    }
     // (1/h in tree order: a softened pair then costs one division, 1/r; see softening.hpp)
     inv_h_.resize(n);
     for (std::size_t t = 0; t < n; ++t) inv_h_[t] = 1.0 / h_[t];
@@ -362,7 +367,8 @@ struct TreeGravity {
       const std::size_t i = index_[t];
       p.acceleration[i] += G * Vec<3>(ax_[t], ay_[t], az_[t]);
       potential_[i] = G * phi_[t];
-      last_acceleration_[i] = G * std::sqrt(ax_[t] * ax_[t] + ay_[t] * ay_[t] + az_[t] * az_[t]);
+      if (!last_acceleration_.empty())
+        last_acceleration_[i] = G * std::sqrt(ax_[t] * ax_[t] + ay_[t] * ay_[t] + az_[t] * az_[t]);
     }
     const auto done = std::chrono::steady_clock::now();
     statistics_.build_seconds = std::chrono::duration<double>(built - start).count();
