@@ -326,10 +326,57 @@ TEST_CASE("the tree's relative criterion: a smaller largest error with fewer int
   const auto one = run(1), two = run(2);
   omp_set_num_threads(saved);
   CHECK(one == two);
+  // Handed another set of as many particles after forget_accelerations(), the tree starts
+  // again with the geometric criterion (the other set's |a| would be read otherwise).
+  {
+    sph::TreeGravity tree, geometric;
+    tree.criterion = sph::TreeGravity::Criterion::relative;
+    with_gravity(cusp, tree);
+    with_gravity(cusp, tree);
+    tree.forget_accelerations();
+    const auto fresh = with_gravity(uniform.particles, tree);
+    CHECK_FALSE(tree.statistics().relative);
+    CHECK(fresh.acceleration == with_gravity(uniform.particles, geometric).acceleration);
+  }
   // An impossible alpha is refused.
   sph::TreeGravity bad;
   bad.relative_accuracy = 0;
   CHECK_THROWS_WITH(with_gravity(cusp, bad), Catch::Contains("alpha must be positive"));
+}
+
+TEST_CASE("the tree's relative criterion in physical units", "[gravity]") {
+  // The criterion compares a node's error, in the tree's units, with the particle's last |a|,
+  // in the caller's: a wrong conversion shows as another choice of nodes once the units
+  // change.  The 1/r sphere in cgs-like units (a parsec, a solar mass, G in cm^3 g^-1 s^-2)
+  // must take the nodes and reach the accuracy it takes in units of R = M = G = 1.
+  const auto cusp = ball(10000, 12, true);
+  const double length = 3.086e18, mass = 1.989e33, big_g = 6.674e-8;
+  sph::Particles<3> cgs = cusp;
+  for (std::size_t i = 0; i < cgs.size(); ++i) {
+    cgs.position[i] *= length, cgs.smoothing_length[i] *= length, cgs.mass[i] *= mass;
+  }
+  const auto relative_run = [](const sph::Particles<3>& p, double g) {
+    sph::TreeGravity tree(sph::TreeGravity::default_opening_angle,
+                          sph::TreeGravity::Order::quadrupole, sph::TreeGravity::default_leaf_size,
+                          g);
+    tree.criterion = sph::TreeGravity::Criterion::relative;
+    with_gravity(p, tree);
+    auto out = with_gravity(p, tree);
+    REQUIRE(tree.statistics().relative);
+    return std::make_pair(out, tree.statistics().node_interactions);
+  };
+  sph::DirectGravity direct, direct_cgs(big_g);
+  const auto [unit, nodes_unit] = relative_run(cusp, 1.0);
+  const auto [physical, nodes_cgs] = relative_run(cgs, big_g);
+  const auto e_unit = relative_errors(unit, with_gravity(cusp, direct));
+  const auto e_cgs = relative_errors(physical, with_gravity(cgs, direct_cgs));
+  std::printf(
+      "relative criterion, units R = M = G = 1 against cgs: node interactions %.1f, %.1f; "
+      "99th percentile %.3e, %.3e; max %.3e, %.3e\n",
+      nodes_unit, nodes_cgs, e_unit.p99, e_cgs.p99, e_unit.max, e_cgs.max);
+  CHECK(std::abs(nodes_cgs / nodes_unit - 1) < 1e-3);
+  CHECK(std::abs(e_cgs.p99 / e_unit.p99 - 1) < 0.02);
+  CHECK(std::abs(e_cgs.max / e_unit.max - 1) < 0.05);
 }
 
 TEST_CASE("the tree's potential energy and momentum", "[gravity]") {

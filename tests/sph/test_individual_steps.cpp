@@ -15,11 +15,13 @@
 #include "sph/viscosity/selhammar_1997.hpp"
 
 #include <catch2/catch.hpp>
+#include <omp.h>
 
 #include <algorithm>
 #include <cmath>
 #include <cstdint>
 #include <cstdio>
+#include <tuple>
 #include <vector>
 
 namespace {
@@ -290,4 +292,35 @@ TEST_CASE("individual time steps: particles that start together are within the l
       n, own.time(), pairs, beyond, limiter, worst);
   CHECK(pairs > 0);
   CHECK(beyond == 0);
+}
+
+TEST_CASE("individual time steps: the same to the bit with 1 and 2 threads", "[individual]") {
+  // 4096 particles: every parallel loop of the scheme (the limiter's sweeps, the drift, the
+  // kicks) and of the step (search, tree) runs on the threads.  Steps into the collapse, where
+  // the particles spread over several levels and the limiter shortens some.
+  sph::EvrardSetup setup;
+  setup.particles = 4096;
+  const int saved = omp_get_max_threads();
+  const auto run = [&setup](int threads) {
+    omp_set_num_threads(threads);
+    auto sim = standard_own_steps(setup);
+    long updates = 0;
+    for (int s = 0; s < 40; ++s) {
+      sim.step();
+      updates += static_cast<long>(sim.evaluated());
+    }
+    return std::make_tuple(sim.particles(), sim.time(), updates);
+  };
+  const auto [one, t_one, updates_one] = run(1);
+  const auto [two, t_two, updates_two] = run(2);
+  omp_set_num_threads(saved);
+  std::printf("  Evrard, 4096 particles, 40 individual steps to t = %.4f: %ld particle updates\n",
+              t_one, updates_one);
+  CHECK(updates_one < 40L * 4096);
+  CHECK(t_one == t_two);
+  CHECK(updates_one == updates_two);
+  CHECK(one.position == two.position);
+  CHECK(one.velocity == two.velocity);
+  CHECK(one.internal_energy == two.internal_energy);
+  CHECK(one.smoothing_length == two.smoothing_length);
 }

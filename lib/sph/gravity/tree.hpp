@@ -54,10 +54,11 @@
 /// and, as before, where no particle of the node is within the softening range, and the node's
 /// sphere does not reach the particle (\f$ d > r_\mathrm{max} \f$: GADGET-2's test that the
 /// particle is not inside the node).  It needs a first evaluation: one without accelerations of
-/// the same particles (the first, or another particle count), and any particle whose last
-/// acceleration is zero, uses the geometric criterion.  A target of the walk uses its smallest
-/// \f$ |\mathbf a| \f$.  The result then depends on the last evaluation, still the same for
-/// any number of threads.
+/// the same particles (the first, another particle count, or the first after
+/// forget_accelerations(), which a caller must call before handing the tree a different set of
+/// as many particles), and any particle whose last acceleration is zero, uses the geometric
+/// criterion.  A target of the walk uses its smallest \f$ |\mathbf a| \f$.  The result then
+/// depends on the last evaluation, still the same for any number of threads.
 ///
 /// **How small must theta be?**  On a random uniform sphere of \f$ 10^4 \f$ particles
 /// (tests/sph/test_gravity.cpp) the default \f$ \theta = 0.3 \f$ with quadrupoles gives a
@@ -235,6 +236,12 @@ struct TreeGravity {
     for (std::size_t i = 0; i < p.size(); ++i) e += 0.5 * p.mass[i] * potential_[i];
     return e;
   }
+
+  /// Makes the next evaluation use the geometric criterion, as the first does: the relative
+  /// criterion reads each particle's |a| of the last evaluation, which belongs to other
+  /// particles once the tree is handed a different set (a tree cannot tell such a set from
+  /// the same particles moved on, when the count is the same).
+  void forget_accelerations() { last_acceleration_.clear(); }
 
   /// \f$ \Phi_i \f$ at the last evaluation, in the particles' order.
   const std::vector<double>& potential() const { return potential_; }
