@@ -67,9 +67,10 @@ inline bool NeighbourSearch<D, K>::try_reuse(Particles<D>& p, const Box<D>& box,
   while (levels < max_motion_levels && std::ldexp(largest_reach, -levels) >= least_reach) ++levels;
   if (motions_.size() < static_cast<std::size_t>(levels))
     motions_.resize(static_cast<std::size_t>(levels));
+  const Bounds<D> extent = bounds<D>(p.position);
   for (int l = 0; l < levels; ++l)
     motions_[static_cast<std::size_t>(l)].build(p.position, box, moved,
-                                                std::ldexp(largest_reach, -l));
+                                                std::ldexp(largest_reach, -l), &extent);
   covered_.resize(n);
 #pragma omp parallel for schedule(static) if (n >= parallel_threshold)
   for (std::size_t i = 0; i < n; ++i) {

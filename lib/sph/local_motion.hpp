@@ -18,6 +18,8 @@
 #include "sph/error.hpp"
 #include "sph/parallel.hpp"
 
+#include <omp.h>
+
 #include <algorithm>
 #include <array>
 #include <cmath>
@@ -35,57 +37,62 @@ class LocalMotion {
  public:
   /// Bound |d_i - d_j| for every pair closer than (at least) `cell_size` now.  `x` are the
   /// current positions (wrapped into the box on periodic axes), d[a][i] the displacements.
+  /// `extent`: the bounds of x, when the caller has them (several builds on the same
+  /// positions, at several cell sizes, need them once).
   void build(const std::vector<Vec<D>>& x, const Box<D>& box, const std::array<const double*, D>& d,
-             double cell_size) {
+             double cell_size, const Bounds<D>* extent = nullptr) {
     require(!x.empty(), "local motion: no particles");
     require(std::isfinite(cell_size) && cell_size > 0,
             "local motion: the cell size must be positive and finite");
     const std::size_t n = x.size();
-    set_geometry(x, box, cell_size);
+    set_geometry(extent ? *extent : bounds<D>(x), box, cell_size, n);
     const std::size_t cells = total_cells();
-    constexpr double inf = std::numeric_limits<double>::infinity();
-    for (int a = 0; a < D; ++a) {
-      lo_[a].assign(cells, inf);
-      hi_[a].assign(cells, -inf);
-    }
-    cell_of_.resize(n);
-#pragma omp parallel for schedule(static) if (n >= parallel_threshold)
-    for (std::size_t i = 0; i < n; ++i) {
-      std::size_t cell = 0, stride = 1;
-      for (int a = 0; a < D; ++a) {
-        const double c = std::floor((x[i][a] - origin_[a]) / size_[a]);
-        const int k = static_cast<int>(std::clamp(c, 0.0, static_cast<double>(cells_[a] - 1)));
-        cell += static_cast<std::size_t>(k) * stride;
-        stride *= static_cast<std::size_t>(cells_[a]);
-      }
-      cell_of_[i] = static_cast<std::uint32_t>(cell);
-    }
-    for (std::size_t i = 0; i < n; ++i) {
-      const std::uint32_t cell = cell_of_[i];
-      for (int a = 0; a < D; ++a) {
-        lo_[a][cell] = std::min(lo_[a][cell], d[a][i]);
-        hi_[a][cell] = std::max(hi_[a][cell], d[a][i]);
-      }
-    }
     for (int a = 0; a < D; ++a) periodic_[a] = box.periodic[a];
-    for (int axis = 0; axis < D; ++axis) {
-      for (int a = 0; a < D; ++a) {
-        widen_along(lo_[a], axis, [](double u, double v) { return std::min(u, v); });
-        widen_along(hi_[a], axis, [](double u, double v) { return std::max(u, v); });
-      }
-    }
+    range_.resize(cells * width);
+    cell_of_.resize(n);
     bound_.resize(n);
-#pragma omp parallel for schedule(static) if (n >= parallel_threshold)
-    for (std::size_t i = 0; i < n; ++i) {
-      const std::uint32_t cell = cell_of_[i];
-      double off2 = 0, half2 = 0;
-      for (int a = 0; a < D; ++a) {
-        const double centre = 0.5 * (lo_[a][cell] + hi_[a][cell]);
-        const double half = 0.5 * (hi_[a][cell] - lo_[a][cell]);
-        off2 += (d[a][i] - centre) * (d[a][i] - centre);
-        half2 += half * half;
+    // One parallel region for the whole build (a region per loop would cost more, in waking
+    // the threads, than the loops): each loop is split among the threads, and every result
+    // is the same for any thread count (minima, each cell's taken by one thread).
+#pragma omp parallel if (n >= parallel_threshold)
+    {
+#pragma omp for schedule(static) nowait
+      for (std::size_t k = 0; k < cells * width; ++k)
+        range_[k] = std::numeric_limits<double>::infinity();
+#pragma omp for schedule(static)
+      for (std::size_t i = 0; i < n; ++i) {
+        std::size_t cell = 0, stride = 1;
+        for (int a = 0; a < D; ++a) {
+          const double c = std::floor((x[i][a] - origin_[a]) / size_[a]);
+          const int k = static_cast<int>(std::clamp(c, 0.0, static_cast<double>(cells_[a] - 1)));
+          cell += static_cast<std::size_t>(k) * stride;
+          stride *= static_cast<std::size_t>(cells_[a]);
+        }
+        cell_of_[i] = static_cast<std::uint32_t>(cell);
       }
-      bound_[i] = std::sqrt(off2) + std::sqrt(half2);
+      in_own_cells(n, [&](std::size_t i, std::uint32_t cell) {
+        double* r = range_.data() + std::size_t{cell} * width;
+        for (int a = 0; a < D; ++a) {
+          r[a] = std::min(r[a], d[a][i]);
+          r[D + a] = std::min(r[D + a], -d[a][i]);
+        }
+      });
+#pragma omp barrier
+      std::vector<double> row;
+      for (int axis = 0; axis < D; ++axis) widen_along<width>(range_, axis, row);
+#pragma omp for schedule(static)
+      for (std::size_t i = 0; i < n; ++i) {
+        const double* r = range_.data() + std::size_t{cell_of_[i]} * width;
+        double off2 = 0, half2 = 0;
+        for (int a = 0; a < D; ++a) {
+          const double lo = r[a], hi = -r[D + a];
+          const double centre = 0.5 * (lo + hi);
+          const double half = 0.5 * (hi - lo);
+          off2 += (d[a][i] - centre) * (d[a][i] - centre);
+          half2 += half * half;
+        }
+        bound_[i] = std::sqrt(off2) + std::sqrt(half2);
+      }
     }
   }
 
@@ -103,14 +110,24 @@ class LocalMotion {
   /// closer than cell_size() to it, found in the same cells as the bound (for the positions of
   /// the last build).
   void neighbourhood_min(const double* value, std::vector<double>& out) const {
-    std::vector<double> least(total_cells(), std::numeric_limits<double>::infinity());
     const std::size_t n = cell_of_.size();
-    for (std::size_t i = 0; i < n; ++i) least[cell_of_[i]] = std::min(least[cell_of_[i]], value[i]);
-    for (int axis = 0; axis < D; ++axis)
-      widen_along(least, axis, [](double u, double v) { return std::min(u, v); });
+    least_.resize(total_cells());
     out.resize(n);
-#pragma omp parallel for schedule(static) if (n >= parallel_threshold)
-    for (std::size_t i = 0; i < n; ++i) out[i] = least[cell_of_[i]];
+    std::vector<double>& least = least_;
+#pragma omp parallel if (n >= parallel_threshold)
+    {
+#pragma omp for schedule(static)
+      for (std::size_t c = 0; c < least.size(); ++c)
+        least[c] = std::numeric_limits<double>::infinity();
+      in_own_cells(n, [&](std::size_t i, std::uint32_t cell) {
+        least[cell] = std::min(least[cell], value[i]);
+      });
+#pragma omp barrier
+      std::vector<double> row;
+      for (int axis = 0; axis < D; ++axis) widen_along<1>(least, axis, row);
+#pragma omp for schedule(static)
+      for (std::size_t i = 0; i < n; ++i) out[i] = least[cell_of_[i]];
+    }
   }
 
  private:
@@ -120,10 +137,27 @@ class LocalMotion {
     return total;
   }
 
-  void set_geometry(const std::vector<Vec<D>>& x, const Box<D>& box, double target) {
-    const auto [lo, hi] = bounds<D>(x);
+  // f(i, cell) for every particle i, each by the thread that owns its cell (called by every
+  // thread of a parallel region: the threads split the cells into ranges and each reads every
+  // particle's cell).  A cell's min or max is then taken by one thread, in the particles'
+  // order, with no lock.  No barrier at the end.
+  template <class F>
+  void in_own_cells(std::size_t n, F f) const {
+    const std::size_t cells = total_cells();
+    const auto parts = static_cast<std::size_t>(omp_get_num_threads()),
+               part = static_cast<std::size_t>(omp_get_thread_num());
+    const std::size_t first = cells * part / parts, last = cells * (part + 1) / parts;
+    for (std::size_t i = 0; i < n; ++i) {
+      const std::uint32_t cell = cell_of_[i];
+      if (cell >= first && cell < last) f(i, cell);
+    }
+  }
+
+  void set_geometry(const Bounds<D>& extent, const Box<D>& box, double target, std::size_t n) {
+    const Vec<D>& lo = extent.lo;
+    const Vec<D>& hi = extent.hi;
     require(lo.allFinite() && hi.allFinite(), "local motion: a particle position is not finite");
-    const double max_cells = 2.0 * static_cast<double>(x.size()) + 64.0;
+    const double max_cells = 2.0 * static_cast<double>(n) + 64.0;
     for (int attempt = 0; attempt < 200; ++attempt) {
       double total = 1;
       for (int a = 0; a < D; ++a) {
@@ -143,32 +177,39 @@ class LocalMotion {
                 " to " + to_string<D>(hi) + " (a position far from the others?)");
   }
 
-  // Replace every cell's value by `pick` (the min or the max) of it and its two neighbours
-  // along `axis` (periodically wrapped, or cut at the ends of an open axis); done along each
-  // axis in turn, this covers the 3^D neighbourhood.
-  template <class Pick>
-  void widen_along(std::vector<double>& value, int axis, Pick pick) const {
+  // Replace every cell's `Width` values by the least of each over the cell and its two
+  // neighbours along `axis` (periodically wrapped, or cut at the ends of an open axis); done
+  // along each axis in turn, this covers the 3^D neighbourhood.  Called by every thread of a
+  // parallel region, which share the lines along the axis (`row`: each thread's room for one).
+  template <int Width>
+  void widen_along(std::vector<double>& value, int axis, std::vector<double>& row) const {
     const int n = cells_[axis];
     if (n == 1) return;
     std::size_t stride = 1;
     for (int a = 0; a < axis; ++a) stride *= static_cast<std::size_t>(cells_[a]);
-    const std::size_t cells = total_cells();
     const std::size_t line = stride * static_cast<std::size_t>(n);
-    std::vector<double> row(static_cast<std::size_t>(n));
-    for (std::size_t outer = 0; outer < cells; outer += line) {
-      for (std::size_t inner = 0; inner < stride; ++inner) {
-        const std::size_t base = outer + inner;
-        for (int k = 0; k < n; ++k)
-          row[static_cast<std::size_t>(k)] = value[base + static_cast<std::size_t>(k) * stride];
-        for (int k = 0; k < n; ++k) {
-          double v = row[static_cast<std::size_t>(k)];
-          for (int s : {-1, 1}) {
-            int m = k + s;
-            if (periodic_[axis]) m = (m + n) % n;
-            if (m < 0 || m >= n) continue;
-            v = pick(v, row[static_cast<std::size_t>(m)]);
-          }
-          value[base + static_cast<std::size_t>(k) * stride] = v;
+    const std::size_t lines = total_cells() / static_cast<std::size_t>(n);
+    const bool periodic = periodic_[axis];
+    row.resize(static_cast<std::size_t>(n + 2) * Width);
+#pragma omp for schedule(static)
+    for (std::size_t l = 0; l < lines; ++l) {
+      const std::size_t base = l / stride * line + l % stride;
+      // The line with one cell more at each end: the other end's on a periodic axis, else
+      // +inf (which changes no minimum).
+      double* r = row.data() + Width;
+      for (int k = 0; k < n; ++k) {
+        const double* v = value.data() + (base + static_cast<std::size_t>(k) * stride) * Width;
+        for (int c = 0; c < Width; ++c) r[k * Width + c] = v[c];
+      }
+      for (int c = 0; c < Width; ++c) {
+        r[-Width + c] = periodic ? r[(n - 1) * Width + c] : std::numeric_limits<double>::infinity();
+        r[n * Width + c] = periodic ? r[c] : std::numeric_limits<double>::infinity();
+      }
+      for (int k = 0; k < n; ++k) {
+        double* v = value.data() + (base + static_cast<std::size_t>(k) * stride) * Width;
+        for (int c = 0; c < Width; ++c) {
+          v[c] =
+              std::min(std::min(r[k * Width + c], r[(k - 1) * Width + c]), r[(k + 1) * Width + c]);
         }
       }
     }
@@ -178,9 +219,13 @@ class LocalMotion {
   std::array<bool, D> periodic_{};
   Vec<D> origin_ = Vec<D>::Zero();
   Vec<D> size_ = Vec<D>::Ones();
-  std::array<std::vector<double>, D> lo_, hi_;  // per cell and axis: the displacements' range
+  // Per cell, the range of the displacements on each axis as 2D minima side by side: the
+  // least d_a, then the least -d_a (minus the largest), so that one pass widens them all.
+  static constexpr int width = 2 * D;
+  std::vector<double> range_;
   std::vector<std::uint32_t> cell_of_;
   std::vector<double> bound_;
+  mutable std::vector<double> least_;  // neighbourhood_min's per-cell minimum (kept for its room)
 };
 
 }  // namespace sph

@@ -444,21 +444,24 @@ class NeighbourSearch {
       received.assign(n + 1, 0);
       for (const auto& b : blocks_)
         for (const auto& r : b.reverse) ++received[r.first + 1];
+      // Each receiving particle's own pairs first, then room for the ones it receives: where
+      // its part of the side buffer starts, then the copies (by the threads).
+      auto& start = side_start_;
+      start.resize(n);
       std::size_t side_size = 0;
       for (std::size_t j = 0; j < n; ++j) {
+        start[j] = side_size;
         if (received[j + 1] > 0) side_size += list_.count_[j] + received[j + 1];
       }
       side_.resize(side_size);
-      // Each receiving particle's own pairs first, then room for the ones it receives.
-      std::size_t at = 0;
+#pragma omp parallel for schedule(static) if (n >= parallel_threshold)
       for (std::size_t j = 0; j < n; ++j) {
         const std::size_t extra = received[j + 1];
         if (extra == 0) continue;
-        std::copy_n(list_.first_[j], list_.count_[j], side_.data() + at);
-        list_.first_[j] = side_.data() + at;
-        received[j + 1] = at + list_.count_[j];  // where the next received pair goes
+        std::copy_n(list_.first_[j], list_.count_[j], side_.data() + start[j]);
+        list_.first_[j] = side_.data() + start[j];
+        received[j + 1] = start[j] + list_.count_[j];  // where the next received pair goes
         list_.count_[j] += static_cast<std::uint32_t>(extra);
-        at += list_.count_[j];
       }
       for (const auto& b : blocks_)
         for (const auto& r : b.reverse) side_[received[r.first + 1]++] = r.second;
@@ -500,8 +503,9 @@ class NeighbourSearch {
   std::vector<double> h_floor_;    // the smallest h near each particle (find_reverse)
   std::vector<double> farthest2_;  // the largest r_ij^2 among each particle's kept pairs
   long searches_ = 0, full_searches_ = 0, reuses_ = 0, particle_searches_ = 0;
-  std::vector<std::size_t> received_;  // assemble_list: one-sided pairs per receiving particle
-  std::vector<Neighbour> side_;        // the pairs of particles that receive one-sided ones
+  std::vector<std::size_t> received_;    // assemble_list: one-sided pairs per receiving particle
+  std::vector<std::size_t> side_start_;  // and where each one's pairs start in side_
+  std::vector<Neighbour> side_;          // the pairs of particles that receive one-sided ones
   // Neighbour-number rule: the count a lattice shell forced on each particle (-1: none), and
   // the rule it was forced under.
   std::vector<int> shell_count_;
