@@ -139,8 +139,9 @@ class LocalMotion {
 
   // f(i, cell) for every particle i, each by the thread that owns its cell (called by every
   // thread of a parallel region: the threads split the cells into ranges and each reads every
-  // particle's cell).  A cell's min or max is then taken by one thread, in the particles'
-  // order, with no lock.  No barrier at the end.
+  // particle's cell).  A cell's minimum is then taken by one thread, in the particles' order,
+  // with no lock.  No barrier at the end.  (The ranges hold equal numbers of cells, not of
+  // particles: in a collapsed cloud one thread takes most.)
   template <class F>
   void in_own_cells(std::size_t n, F f) const {
     const std::size_t cells = total_cells();
@@ -184,7 +185,7 @@ class LocalMotion {
   template <int Width>
   void widen_along(std::vector<double>& value, int axis, std::vector<double>& row) const {
     const int n = cells_[axis];
-    if (n == 1) return;
+    if (n <= 1) return;  // (0: before any build)
     std::size_t stride = 1;
     for (int a = 0; a < axis; ++a) stride *= static_cast<std::size_t>(cells_[a]);
     const std::size_t line = stride * static_cast<std::size_t>(n);
@@ -225,7 +226,9 @@ class LocalMotion {
   std::vector<double> range_;
   std::vector<std::uint32_t> cell_of_;
   std::vector<double> bound_;
-  mutable std::vector<double> least_;  // neighbourhood_min's per-cell minimum (kept for its room)
+  // neighbourhood_min's per-cell minimum, kept for its room (so that method, though const, must
+  // not run twice at once on one object)
+  mutable std::vector<double> least_;
 };
 
 }  // namespace sph
