@@ -56,9 +56,6 @@ class LocalMotion {
     // is the same for any thread count (minima, each cell's taken by one thread).
 #pragma omp parallel if (n >= parallel_threshold)
     {
-#pragma omp for schedule(static) nowait
-      for (std::size_t k = 0; k < cells * width; ++k)
-        range_[k] = std::numeric_limits<double>::infinity();
 #pragma omp for schedule(static)
       for (std::size_t i = 0; i < n; ++i) {
         std::size_t cell = 0, stride = 1;
@@ -70,16 +67,12 @@ class LocalMotion {
         }
         cell_of_[i] = static_cast<std::uint32_t>(cell);
       }
-      in_own_cells(n, [&](std::size_t i, std::uint32_t cell) {
-        double* r = range_.data() + std::size_t{cell} * width;
+      neighbourhood_minima<width>(range_, n, [&](std::size_t i, double* r) {
         for (int a = 0; a < D; ++a) {
           r[a] = std::min(r[a], d[a][i]);
           r[D + a] = std::min(r[D + a], -d[a][i]);
         }
       });
-#pragma omp barrier
-      std::vector<double> row;
-      for (int axis = 0; axis < D; ++axis) widen_along<width>(range_, axis, row);
 #pragma omp for schedule(static)
       for (std::size_t i = 0; i < n; ++i) {
         const double* r = range_.data() + std::size_t{cell_of_[i]} * width;
@@ -111,20 +104,12 @@ class LocalMotion {
   /// the last build).
   void neighbourhood_min(const double* value, std::vector<double>& out) const {
     const std::size_t n = cell_of_.size();
-    least_.resize(total_cells());
+    std::vector<double> least(total_cells());
     out.resize(n);
-    std::vector<double>& least = least_;
 #pragma omp parallel if (n >= parallel_threshold)
     {
-#pragma omp for schedule(static)
-      for (std::size_t c = 0; c < least.size(); ++c)
-        least[c] = std::numeric_limits<double>::infinity();
-      in_own_cells(n, [&](std::size_t i, std::uint32_t cell) {
-        least[cell] = std::min(least[cell], value[i]);
-      });
-#pragma omp barrier
-      std::vector<double> row;
-      for (int axis = 0; axis < D; ++axis) widen_along<1>(least, axis, row);
+      neighbourhood_minima<1>(least, n,
+                              [&](std::size_t i, double* r) { r[0] = std::min(r[0], value[i]); });
 #pragma omp for schedule(static)
       for (std::size_t i = 0; i < n; ++i) out[i] = least[cell_of_[i]];
     }
@@ -137,21 +122,29 @@ class LocalMotion {
     return total;
   }
 
-  // f(i, cell) for every particle i, each by the thread that owns its cell (called by every
-  // thread of a parallel region: the threads split the cells into ranges and each reads every
-  // particle's cell).  A cell's minimum is then taken by one thread, in the particles' order,
-  // with no lock.  No barrier at the end.  (The ranges hold equal numbers of cells, not of
-  // particles: in a collapsed cloud one thread takes most.)
-  template <class F>
-  void in_own_cells(std::size_t n, F f) const {
+  // Every cell's `Width` minima over its particles (lower(i, r) lowers r, the minima of
+  // particle i's cell, by its values), then over the cell's 3^D neighbourhood (widen_along).
+  // Called by every thread of a parallel region after cell_of_ is set.  The threads split the
+  // cells into ranges, and each reads every particle's cell but lowers only its own cells': a
+  // cell's minima are taken by one thread, in the particles' order, with no lock, the same for
+  // any thread count.  (The ranges hold equal numbers of cells, not of particles: in a
+  // collapsed cloud one thread takes most.)
+  template <int Width, class Lower>
+  void neighbourhood_minima(std::vector<double>& value, std::size_t n, Lower lower) const {
+#pragma omp for schedule(static)
+    for (std::size_t k = 0; k < value.size(); ++k)
+      value[k] = std::numeric_limits<double>::infinity();
     const std::size_t cells = total_cells();
     const auto parts = static_cast<std::size_t>(omp_get_num_threads()),
                part = static_cast<std::size_t>(omp_get_thread_num());
     const std::size_t first = cells * part / parts, last = cells * (part + 1) / parts;
     for (std::size_t i = 0; i < n; ++i) {
       const std::uint32_t cell = cell_of_[i];
-      if (cell >= first && cell < last) f(i, cell);
+      if (cell >= first && cell < last) lower(i, value.data() + std::size_t{cell} * Width);
     }
+#pragma omp barrier
+    std::vector<double> row;
+    for (int axis = 0; axis < D; ++axis) widen_along<Width>(value, axis, row);
   }
 
   void set_geometry(const Bounds<D>& extent, const Box<D>& box, double target, std::size_t n) {
@@ -226,9 +219,6 @@ class LocalMotion {
   std::vector<double> range_;
   std::vector<std::uint32_t> cell_of_;
   std::vector<double> bound_;
-  // neighbourhood_min's per-cell minimum, kept for its room (so that method, though const, must
-  // not run twice at once on one object)
-  mutable std::vector<double> least_;
 };
 
 }  // namespace sph
