@@ -364,8 +364,15 @@ struct TreeGravity {
       last_acceleration_.assign(n, 0.0);
     }
     // (1/h in tree order: a softened pair then costs one division, 1/r; see softening.hpp)
-    inv_h_.resize(n);
-    for (std::size_t t = 0; t < n; ++t) inv_h_[t] = 1.0 / h_[t];
+    inv_h_.resize(n), mass_units_.resize(n), four_h2_units_.resize(n);
+    for (std::size_t t = 0; t < n; ++t) {
+      inv_h_[t] = 1.0 / h_[t];
+      // (in the tree's units, for the single-precision pass; pairs nearer than closest_ go to
+      // the second pass, in double precision)
+      mass_units_[t] = static_cast<float>(m_[t] * mass_scale_);
+      const double two_h = std::max(2.0 * h_[t] * length_scale_, closest_);
+      four_h2_units_[t] = static_cast<float>(two_h * two_h);
+    }
     const auto built = std::chrono::steady_clock::now();
     walk();
     // Back to the particles' own order.
@@ -805,17 +812,23 @@ struct TreeGravity {
     // Both lists side by side, in single precision from the group's centre.
     lists.size_particles(particles);
     std::size_t j = 0;
+    const double cx = centre[0], cy = centre[1], cz = centre[2], scale = length_scale_;
     for (std::size_t r = 0; r < lists.opened.size(); r += 2) {
-      for (std::uint32_t t = lists.opened[r]; t < lists.opened[r + 1]; ++t, ++j) {
-        lists.px[j] = static_cast<float>((x_[t] - centre[0]) * length_scale_);
-        lists.py[j] = static_cast<float>((y_[t] - centre[1]) * length_scale_);
-        lists.pz[j] = static_cast<float>((z_[t] - centre[2]) * length_scale_);
-        lists.pm[j] = static_cast<float>(m_[t] * mass_scale_);
-        // (pairs nearer than closest_ go to the second pass, in double precision)
-        const double two_h = std::max(2.0 * h_[t] * length_scale_, closest_);
-        lists.p4h2[j] = static_cast<float>(two_h * two_h);
-        lists.pt[j] = t;
+      const std::uint32_t first = lists.opened[r], count = lists.opened[r + 1] - first;
+      const double *x = x_.data() + first, *y = y_.data() + first, *z = z_.data() + first;
+      const float *m = mass_units_.data() + first, *four_h2 = four_h2_units_.data() + first;
+      float *px = lists.px.data() + j, *py = lists.py.data() + j, *pz = lists.pz.data() + j,
+            *pm = lists.pm.data() + j, *p4h2 = lists.p4h2.data() + j;
+      std::uint32_t* pt = lists.pt.data() + j;
+#pragma omp simd
+      for (std::uint32_t e = 0; e < count; ++e) {
+        px[e] = static_cast<float>((x[e] - cx) * scale);
+        py[e] = static_cast<float>((y[e] - cy) * scale);
+        pz[e] = static_cast<float>((z[e] - cz) * scale);
+        pm[e] = m[e], p4h2[e] = four_h2[e];
+        pt[e] = first + e;
       }
+      j += count;
     }
     lists.far_from(centre, length_scale_);
     const std::size_t summed = active_in(begin, end);
@@ -879,14 +892,13 @@ struct TreeGravity {
     // than both kernels' support; the others -- itself among them -- are noted for the second.
     const float *px = lists.px.data(), *py = lists.py.data(), *pz = lists.pz.data(),
                 *pm = lists.pm.data(), *p4h2 = lists.p4h2.data();
-    const double two_h = std::max(2.0 * h_[t] * length_scale_, closest_);
-    const auto four_h2 = static_cast<float>(two_h * two_h);
+    const float four_h2 = four_h2_units_[t];
     const std::size_t pairs = lists.particles, full_pairs = pairs - pairs % V;
     std::uint32_t* softened = lists.softened.data();
     std::size_t n_softened = 0;
     for (std::size_t k = 0; k < full_pairs; k += V) {
-      int inside[V];
-#pragma omp simd
+      int inside[V], any_inside = 0;
+#pragma omp simd reduction(| : any_inside)
       for (int l = 0; l < V; ++l) {
         const float dx = xi - px[k + l], dy = yi - py[k + l], dz = zi - pz[k + l];
         const float r2 = dx * dx + dy * dy + dz * dz, support2 = std::max(four_h2, p4h2[k + l]);
@@ -897,11 +909,11 @@ struct TreeGravity {
         fx[l] -= f * dx, fy[l] -= f * dy, fz[l] -= f * dz;
         fphi[l] -= m_r;
         inside[l] = r2 < support2;
+        any_inside |= inside[l];
       }
       // (most blocks hold no such pair: the opened leaves' particles lie in tree order, and the
-      // ones within a kernel's reach sit together in a few blocks)
-      int any_inside = 0;
-      for (int l = 0; l < V; ++l) any_inside |= inside[l];
+      // ones within a kernel's reach sit together in a few blocks.  The OR is reduced in the SIMD
+      // loop, in registers, not lane by lane after it)
       if (any_inside == 0) continue;
       for (int l = 0; l < V; ++l) {
         softened[n_softened] = static_cast<std::uint32_t>(k + l);
@@ -955,7 +967,8 @@ struct TreeGravity {
   std::vector<double> x_, y_, z_, m_, h_;
   std::vector<double> a_;  // the last |a| in the tree's units (0: none), for the relative criterion
   std::vector<std::uint32_t> index_;
-  std::vector<double> inv_h_;  // 1/h, in tree order
+  std::vector<double> inv_h_;                      // 1/h, in tree order
+  std::vector<float> mass_units_, four_h2_units_;  // m and (2h)^2 in the tree's units, likewise
   // The active particles (see mark_active).
   std::vector<std::uint32_t> active_before_;
   std::vector<std::uint8_t> flag_;
