@@ -161,9 +161,11 @@ struct TreeGravity {
     double particle_interactions = 0;
     /// Mean particle-node interactions per particle (multipoles).
     double node_interactions = 0;
-    bool relative = false;     ///< whether the walk used the relative criterion
-    double build_seconds = 0;  ///< sorting the particles into the tree, the nodes' moments
-    double walk_seconds = 0;   ///< the walks and the sums over their lists
+    bool relative = false;  ///< whether the walk used the relative criterion
+    /// Sorting the particles into the tree, the nodes' moments, the particles' values in the
+    /// tree's units.
+    double build_seconds = 0;
+    double walk_seconds = 0;  ///< the walks and the sums over their lists
   };
 
   /// theta: on a uniform sphere the 99th percentile of the relative force error is 7e-4 (above).
@@ -968,7 +970,7 @@ struct TreeGravity {
   std::vector<double> a_;  // the last |a| in the tree's units (0: none), for the relative criterion
   std::vector<std::uint32_t> index_;
   std::vector<double> inv_h_;                      // 1/h, in tree order
-  std::vector<float> mass_units_, four_h2_units_;  // m and (2h)^2 in the tree's units, likewise
+  std::vector<float> mass_units_, four_h2_units_;  // m, max(2h, closest_)^2; tree order, units
   // The active particles (see mark_active).
   std::vector<std::uint32_t> active_before_;
   std::vector<std::uint8_t> flag_;
