@@ -1418,8 +1418,7 @@ Extreme step7_extreme(const Parameters& par, const Collapse& c) {
 /// target of the walk.  Most multipoles a particle sums were accepted by a target above its
 /// group and are summed again by every particle below it; skipping their sums altogether
 /// saves 17 % of the tree's time at 8192 particles and 26 % at 22000 (the collapse at
-/// t = 0.8) -- the most such an expansion could save.
-/// The page
+/// t = 0.8) -- the most such an expansion could save.  The page
 /// \ref papers "Reading the two papers" lists, equation by equation, which chapter implements
 /// what.
 
