@@ -1414,11 +1414,14 @@ Extreme step7_extreme(const Parameters& par, const Collapse& c) {
 /// collapsed centre, where h spans a factor of fifty, as it is in a shock tube; and, for the
 /// individual time steps, the work every step still does for all particles -- the drift, the
 /// tree's build, the neighbour search's bookkeeping -- which makes an update 1.4 times dearer
-/// than with one step for all; and a local (Taylor) expansion of the tree's far field at each
-/// target of the walk.  Most multipoles a particle sums were accepted by a target above its
-/// group and are summed again by every particle below it; skipping their sums altogether
-/// saves 17 % of the tree's time at 8192 particles and 26 % at 22000 (the collapse at
-/// t = 0.8) -- the most such an expansion could save.  The page
+/// than with one step for all.  Not on that list: a local (Taylor) expansion of the tree's
+/// far field at each target of the walk, the fast multipole method's step.  Most multipoles a
+/// particle sums were accepted by a target above its group and are summed again by every
+/// particle below it -- skipping their sums altogether saves 17 % of the tree's time at 8192
+/// particles and 26 % at 22000 (the collapse at t = 0.8) -- but those targets hold about 60
+/// particles, and an expansion of order 3 keeps the quadrupoles' accuracy only where a target
+/// is small against its distance: counted, it would save 2-5 % of the step (\ref design
+/// "How the toolkit is built").  The page
 /// \ref papers "Reading the two papers" lists, equation by equation, which chapter implements
 /// what.
 
