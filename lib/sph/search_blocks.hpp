@@ -90,7 +90,9 @@ struct SearchBlock {
   StoredCandidates candidates, spare;  ///< (spare: the buffer a compaction copies into)
   std::size_t live = 0;                ///< entries some particle still refers to
   Candidates found;                    ///< the candidates of the particle being searched
-  std::vector<double> r2;              ///< the distances of the particle being settled (or checked)
+  /// The distances of the particle being settled; when its pairs are checked for one-sided
+  /// ones, its neighbours' (2h_j)^2 and then the distances.
+  std::vector<double> r2;
   KeptPairs kept;
   std::vector<std::pair<std::uint32_t, Neighbour>> reverse;  ///< (j, entry for j)
   /// The candidates of particle i with room for their distances.
