@@ -50,7 +50,7 @@
 ///     their softening, a particle thrown far out.
 ///
 /// What we find, in short.  The tree with quadrupoles at its default opening angle
-/// \f$ \theta = 0.3 \f$ is 17 times faster than direct summation at 8192 particles and 48
+/// \f$ \theta = 0.3 \f$ is 16 times faster than direct summation at 8192 particles and 46
 /// times at 32768 (the recorded run; the ratio grows as \f$ N/\log N \f$), with a
 /// 99th-percentile force error of \f$ 4\times10^{-4} \f$.  Both of
 /// Selhammar's claims about the collapse reproduce as he states them: the standard viscosity's
@@ -542,13 +542,13 @@ TreeStudy step2_tree(const app::Chapter& chapter, const Parameters& par) {
   return study;
 }
 
-/// **Reading the accuracy table.**  On 8192 particles direct summation takes 0.306 s an
+/// **Reading the accuracy table.**  On 8192 particles direct summation takes 0.176 s an
 /// evaluation.  The quadrupole tree at the default \f$ \theta = 0.3 \f$ has a median error of
 /// \f$ 8.39\times10^{-5} \f$, a 99th percentile of \f$ 3.98\times10^{-4} \f$ and a maximum of
 /// \f$ 6.66\times10^{-4} \f$, with 1376 interactions a particle; monopoles at the same angle and
 /// the same interaction count reach \f$ 2.86\times10^{-3} \f$ and \f$ 1.09\times10^{-2} \f$, a
 /// maximum above the stricter target (\f$ 7\times10^{-3} \f$), though within the looser one.  The
-/// quadrupoles cost about a sixth more time (0.066 of direct summation's against 0.057) for a
+/// quadrupoles cost about an eighth more time (0.065 of direct summation's against 0.058) for a
 /// 99th percentile seven times smaller.  Above \f$ \theta = 0.6 \f$ the interactions stay at
 /// 999-1001 a particle and the maximum error at
 /// \f$ 6.72\times10^{-3} \f$ (quadrupoles) and \f$ 3.29\times10^{-2} \f$ (monopoles): there
@@ -586,14 +586,14 @@ TreeStudy step2_tree(const app::Chapter& chapter, const Parameters& par) {
 /// stays flat if the cost grows as \f$ N \f$ and grows slowly if it grows as
 /// \f$ N\log N \f$.
 ///
-/// In the recorded run direct summation's time grows fourfold at each doubling of N (0.2667 s
-/// at 8192 particles, 1.0869 s at 16384, 4.0274 s at 32768), the tree's about twofold
-/// (0.0174 s, 0.0397 s, 0.0935 s, then 0.2008 s at 65536), so the tree's advantage grows with
-/// N: 15.3 times at 8192 particles, 43.1 at 32768.  Its time per particle rises from 2.13 to
-/// 3.06 microseconds between 8192 and 65536 particles: the \f$ \log N \f$ of the walk, and
-/// a walk that no longer fits the processor's caches.  (Runs before this one gave 1.81 and
-/// 2.31 microseconds at 8192 particles: timings on a shared machine vary by a fifth or more
-/// from one run to the next, and only ratios taken within one run compare two methods.)
+/// In the recorded run direct summation's time grows fourfold at each doubling of N (0.1720 s
+/// at 8192 particles, 0.6986 s at 16384, 2.8270 s at 32768), the tree's about twofold
+/// (0.0110 s, 0.0254 s, 0.0618 s, then 0.1635 s at 65536), so the tree's advantage grows with
+/// N: 15.7 times at 8192 particles, 45.7 at 32768.  Its time per particle rises from 1.34 to
+/// 2.49 microseconds between 8192 and 65536 particles: the \f$ \log N \f$ of the walk, and
+/// a walk that no longer fits the processor's caches.  (A run on a machine with AVX2 gave 2.13
+/// and 3.06 microseconds: timings vary with the machine, and on a shared one by a fifth or more
+/// from one run to the next; only ratios taken within one run compare two methods.)
 /// Below 4096 particles the ratio is small, and the time per particle higher: the tree runs on
 /// one thread there, and the softened near field is most of such a small sphere.
 
@@ -821,7 +821,7 @@ struct Collapse {
 /// as much as the heights.  In the recorded run the kinetic energy of every run peaks close to
 /// the reference's t = 0.875 (standard 0.870, switch 0.867, modified 0.924), but the thermal
 /// energy does not: the standard viscosity and the switch reach their largest thermal energy
-/// at t = 1.112 and 1.097, after the reference's 1.065, and the modified viscosity at 1.036,
+/// at t = 1.112 and 1.097, after the reference's 1.065, and the modified viscosity at 1.033,
 /// before it.
 
 void print_energy_table(const Collapse& c, const Parameters& par) {
@@ -1071,8 +1071,8 @@ Cost step6_error_against_run_time(const app::Chapter& chapter, const Parameters&
 /// **Reading the cost slopes.**  The order says how fast a method converges; the cost slope
 /// says what a second of computing buys, which is the question of this step.  In the recorded
 /// run, from 1024 to 8192 particles, the slopes in \f$ L_1(\log_{10}\rho) \f$ are -0.18
-/// (standard), -0.12 (modified) and -0.24 (switch), and in \f$ L_1(v_r) \f$ -0.24, -0.12 and
-/// -0.28: the switch gains the most accuracy per doubling of the time in both, the modified
+/// (standard), -0.14 (modified) and -0.26 (switch), and in \f$ L_1(v_r) \f$ -0.25, -0.14 and
+/// -0.31: the switch gains the most accuracy per doubling of the time in both, the modified
 /// viscosity the least -- though in velocity it starts far lower, which is why it is still
 /// ahead at these resolutions (\ref ch06_findings "the findings").  The energy error falls
 /// faster than \f$ \Delta x \f$, at orders 1.65, 2.38 and 1.77.
@@ -1108,7 +1108,7 @@ struct Extreme {
 /// particle: the Evrard sphere has \f$ M(r) = r^2 \f$, so the radius holding half a particle's
 /// mass is \f$ r = (2N)^{-1/2} \f$, where \f$ \rho = 1/(2\pi r) \f$ -- 20.4 at 8192 particles.
 /// The standard run's centre is compressed fifteen times beyond that (302.3), the modified
-/// run's ninety times (1822.3).  Every least step in the recorded run is set by the Courant
+/// run's ninety times (1840.4).  Every least step in the recorded run is set by the Courant
 /// condition of eq 7: the denser centre costs steps through its smaller h.
 ///
 /// The last column asks what individual time steps would save.  After every step each
@@ -1119,7 +1119,7 @@ struct Extreme {
 /// it counts nothing of what such a scheme costs besides.  Step 4 runs the scheme itself, with
 /// its limiter, which keeps neighbours' steps within a factor of four and so could only add
 /// updates: the standard run made 1.87 times fewer updates (this column: 1.91), the modified
-/// one 2.40 times (2.40).
+/// one 2.41 times (2.40).
 
 void collapsed_centre(const Parameters& par, const Collapse& c) {
   std::printf("  the collapsed centre (Step 4's runs):\n");
@@ -1258,7 +1258,7 @@ Extreme step7_extreme(const Parameters& par, const Collapse& c) {
 /// \f$ 6.7\times10^{-4} \f$ (both targets met with a factor 7 and 10 to spare); monopoles at
 /// the same angle: \f$ 2.9\times10^{-3} \f$ and \f$ 1.1\times10^{-2} \f$.  Its net force is
 /// \f$ 2\times10^{-6} \f$ of the forces' scale (direct summation: round-off).  One evaluation
-/// costs 3.04 microseconds per particle at 8192 particles and 3.84 at 65536 in the recorded run
+/// costs 1.34 microseconds per particle at 8192 particles and 2.49 at 65536 in the recorded run
 /// (two threads of a shared machine; the benchmark program measures it on a quiet one): the
 /// \f$ N\log N \f$ line of `tree_cost.png`.  Why \f$ \theta = 0.3 \f$ and not the 0.5-0.7 of
 /// many codes: on a uniform sphere the 99th percentile at 0.5 is \f$ 4\times10^{-3} \f$, above
@@ -1275,20 +1275,20 @@ Extreme step7_extreme(const Parameters& par, const Collapse& c) {
 /// |:--|--:|--:|--:|--:|--:|--:|
 /// | reference | 0.451 | 1.761 | -2.547 | | | |
 /// | standard | 0.344 | 1.469 | -2.215 | 1369 | 8.8e-3 | 1.4e-4 |
-/// | modified | 0.574 | 2.382 | -3.488 | 3131 | 1.4e-2 | 0.35 |
+/// | modified | 0.574 | 2.360 | -3.471 | 3146 | 1.4e-2 | 0.36 |
 /// | switch | 0.375 | 1.517 | -2.289 | 921 | 9.3e-3 | 1.0e-4 |
-/// | standard, softening 0.01 | 0.347 | 1.487 | -2.233 | 1424 | 4.8e-5 | 2.8e-4 |
+/// | standard, softening 0.01 | 0.347 | 1.487 | -2.233 | 1424 | 4.7e-5 | 2.8e-4 |
 ///
 /// (energy change: \f$ |E(3) - E(0)|/|E(0)| \f$; momentum drift: \f$ |\mathbf P(3)| \f$ over
 /// \f$ \sum m|\mathbf v| \f$.)
 ///
 /// Selhammar: "the curves are more shallow" with the standard viscosity.  **Reproduced**: its
-/// largest thermal energy is 1.469 against the modified viscosity's 2.382, its deepest W -2.215
-/// against -3.488.  What the paper does not say, and the reference shows: the exact curves lie
+/// largest thermal energy is 1.469 against the modified viscosity's 2.360, its deepest W -2.215
+/// against -3.471.  What the paper does not say, and the reference shows: the exact curves lie
 /// between the two.  The standard viscosity's are too shallow, by 24 % in
 /// \f$ E_\mathrm{kin} \f$ -- it heats and brakes the gas as it falls, long before the shock
 /// (Fig 6) -- and the modified viscosity's are too deep, by 27 % in \f$ E_\mathrm{kin} \f$
-/// and 37 % in W.  Its collapse goes further than the exact one can: the gas passes through
+/// and 36 % in W.  Its collapse goes further than the exact one can: the gas passes through
 /// the shock without enough dissipation (the restricted term acts only where the approach
 /// exceeds what the compression explains, which in a converging flow near the centre it
 /// rarely does).  Its energy is conserved as the others' are, because the leapfrog pays the
@@ -1322,8 +1322,8 @@ Extreme step7_extreme(const Parameters& par, const Collapse& c) {
 ///
 /// **Error against run time** (`evrard_error_vs_time.png`, t = 0.8).  At 8192 particles
 /// \f$ L_1(\log_{10}\rho) \f$ is 0.100 (standard), 0.084 (modified), 0.081 (switch) and
-/// \f$ L_1(v_r) \f$ 0.164, 0.086, 0.116, in 5.5, 13.2 and 6.8 s (the run in `output.txt`, two
-/// threads of a machine with AVX2).  From 1024 to 8192 particles
+/// \f$ L_1(v_r) \f$ 0.164, 0.086, 0.116, in 4.3, 8.5 and 4.5 s (the run in `output.txt`, two
+/// threads of a machine with AVX-512).  From 1024 to 8192 particles
 /// the modified viscosity converges at order 0.43 in density, the standard one at 0.71 and the
 /// switch at 0.95.  With `--largest 65536` (16 minutes) the series goes on to 65536 particles,
 /// and the lines part: there \f$ L_1(\log_{10}\rho) \f$ is 0.045 (standard, 91 s), 0.070
@@ -1339,7 +1339,7 @@ Extreme step7_extreme(const Parameters& par, const Collapse& c) {
 /// the best buy of the three.
 ///
 /// **Extreme cases.**  The standard run's centre reaches \f$ \rho = 302 \f$ (1270 times the mean
-/// density), the modified one's 1822, with h down to 0.006 and a step of \f$ 3.8\times10^{-4}
+/// density), the modified one's 1840, with h down to 0.006 and a step of \f$ 3.8\times10^{-4}
 /// \f$; the colder collapse (u = 0.005, 4096 particles) bounces at t = 1.08 with a central
 /// density of 892 and runs on: at this resolution the smoothing length, not the physics, stops
 /// the collapse, far below the \f$ 10^6 \f$ contrast of the continuous problem.  Two particles
@@ -1348,39 +1348,45 @@ Extreme step7_extreme(const Parameters& par, const Collapse& c) {
 /// usual size (maximum \f$ 7\times10^{-4} \f$) and feels \f$ GM/r^2 \f$ to
 /// \f$ 3\times10^{-7} \f$.
 ///
-/// **What it costs.**  At 8192 particles the standard run to t = 3 takes 70 s in the recorded
-/// run (two threads of a machine with AVX2; 1369 steps), the modified viscosity's 205 s: its
-/// denser centre needs 3131 steps, each 1.3 times the standard's cost (the collective term's
-/// sums).  With individual time steps (Step 4's last two runs) the same collapses take 45 s
-/// and 125 s: 1.53 and 1.65 times faster, for 1.87 and 2.40 times fewer particle updates, with
-/// energy extremes within 0.2 % (standard) and 1.8 % (modified) of the runs with one step for
-/// all, and a smaller energy error (\f$ 5.9\times10^{-3} \f$ against
-/// \f$ 8.8\times10^{-3} \f$; \f$ 3.5\times10^{-3} \f$ against
-/// \f$ 1.4\times10^{-2} \f$).  The target for the 8192-particle collapse, 60 s, is **met**
-/// with individual time steps and not with one step for all.  The gain is less than the
-/// updates saved: there are more steps (1984 against 1369: the power-of-two levels round every
-/// step down, by 28 % on average), and each step still drifts every particle,
-/// builds the tree and keeps the neighbour search's bookkeeping for all of them; an update
-/// costs 1.2 (standard) and 1.5 (modified) times one with one step for all.  The whole
-/// chapter takes 10 minutes (8 before the two runs with individual steps were added), against
-/// a target of 3: **not met**; Figs 5-7 and the claims use one step for all, as the paper
-/// does.  The benchmark (`build/bench/bench --only evrard`) times the step at t = 0.8 at 5.5
-/// microseconds a particle with 22000 particles, of which the tree is 3.0, and 4.9 (tree 2.4)
-/// with the relative criterion; the target for the whole step is 3: **not met**.  What makes
-/// the step as fast as it is: the tree's near field sums its softened pairs four at a time in
-/// SIMD registers (the design page says which compiler flag allows
-/// it), about 1.4 times faster than one pair at a time; the neighbour search bounds how far a
-/// particle's neighbourhood has moved on cells about as large as its own reach, not the
-/// largest one in the sphere, which in the collapsed centre saves 39 % of the searches from
-/// t = 0.8 to 1.2.  Still a fifth of the particles search again every step at t = 0.8 (the
-/// shock tube: 4 %), and the tree sums some 2000 interactions a particle -- half of them single
-/// particles of nearby leaves, too near a group, or within its softening range, to be summed as
-/// multipoles.
-/// (The recorded run predates three changes that give the same bits: each group's copy of its
-/// opened leaves runs in SIMD (the standard collapse to t = 1.2 in 0.91 of the time), the
-/// hand-over of one-sided pairs -- which nearly every particle has here, 14 of its 64 pairs --
-/// is written for that case (0.95), and the neighbour search's blocks are smaller, so that
-/// its two threads wait less for each other (0.96).  The design page has the measurements.)
+/// **What it costs.**  At 8192 particles the standard run to t = 3 takes 44 s in the recorded
+/// run (two threads of an AMD EPYC with AVX-512; 1369 steps), the modified viscosity's 123 s:
+/// its denser centre needs 3146 steps, each 1.2 times the standard's cost (the collective
+/// term's sums).  With individual time steps (Step 4's last two runs) the same collapses take
+/// 33 s and 76 s: 1.33 and 1.62 times faster, for 1.87 and 2.41 times fewer particle updates,
+/// with energy extremes within 0.2 % (standard) and 0.9 % (modified) of the runs with one step
+/// for all, and a smaller energy error (\f$ 5.9\times10^{-3} \f$ against
+/// \f$ 8.8\times10^{-3} \f$; \f$ 3.8\times10^{-3} \f$ against
+/// \f$ 1.4\times10^{-2} \f$).  The target for the 8192-particle collapse, 60 s, is **met**,
+/// with one step for all and with individual steps (on a machine with AVX2 the same runs took
+/// 70 and 45 s: met with individual steps only).  The gain is less than the updates saved: there
+/// are more steps (1984 against 1369: the power-of-two levels round every step down, by 28 % on
+/// average), and each step still drifts every particle, builds the tree and keeps the neighbour
+/// search's bookkeeping for all of them; an update costs 1.4 (standard) and 1.5 (modified)
+/// times one with one step for all.  The whole chapter takes 6.5 minutes (10 on the machine
+/// with AVX2), against a target of 3: **not met**; Figs 5-7 and the claims use one step for
+/// all, as the paper does, and the modified viscosity's run alone takes two of the three
+/// minutes.  The benchmark (`build/bench/bench --only evrard`) times the step at t = 0.8 at
+/// 3.5-3.8 microseconds a particle with 22000 particles, of which the tree is 1.9, and 3.1
+/// (tree 1.5) with the relative criterion in the quieter of two runs; the target for the whole
+/// step is 3: **not met** (on the machine with AVX2: 5.5 and 4.9).  What makes the step as
+/// fast as it is: the tree's near field sums its softened pairs several at a time in SIMD
+/// registers (the design page says which compiler flag allows it), about 1.4 times faster
+/// than one pair at a time; the neighbour search bounds how far a particle's neighbourhood has
+/// moved on cells about as large as its own reach, not the largest one in the sphere, which in
+/// the collapsed centre saves 39 % of the searches from t = 0.8 to 1.2; and the particles of
+/// small h search on grids of finer cells than the rest (the design page): after the bounce,
+/// when the gas thrown out spreads the grid over a box a hundred times the core's size, a
+/// search near the centre had scanned 40 particles for each one it kept, and the grid search
+/// was 11 % of the modified run's step at t = 3; with the finer grids, 3 %.  Still a fifth of
+/// the particles search again every step at t = 0.8 (the shock tube: 4 %), and the tree sums
+/// some 2000 interactions a particle -- half of them single particles of nearby leaves, too
+/// near a group, or within its softening range, to be summed as multipoles.  (The finer grids
+/// find the same candidates in another order, so the sums run in another order: the modified
+/// run's largest thermal energy moved by 0.9 %, from 2.382 to 2.360 -- its collective term
+/// amplifies round-off, as Step 4's checks say -- and its run with individual steps took 76 s
+/// against 107 s just before, on the same machine.  The other runs printed the same numbers
+/// but for the last digit of two: the switch's momentum drift and the fixed softening's energy
+/// change.)
 
 /// \section ch06_try What to try
 ///
@@ -1454,7 +1460,8 @@ Extreme step7_extreme(const Parameters& par, const Collapse& c) {
 ///    with fewer particle updates.  The bound is wider than the standard run needs (0.17 % in
 ///    the recorded run): the modified viscosity's collective term amplifies any difference --
 ///    a change of round-off alone moved its largest thermal energy by 0.85 % in an earlier
-///    recorded run -- and its own steps integrate differently, not just in the last bits;
+///    recorded run, a change in the order of its sums by 0.9 % -- and its own steps integrate
+///    differently, not just in the last bits;
 ///  - energy: the run with the fixed softening length changes its total energy by less than a
 ///    fifth of what the same run with softening h does -- the softening, not the integration,
 ///    must be what costs the energy;

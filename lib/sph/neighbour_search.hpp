@@ -30,7 +30,9 @@
 #include <algorithm>
 #include <array>
 #include <cstddef>
+#include <cmath>
 #include <cstdint>
+#include <limits>
 #include <string>
 #include <vector>
 
@@ -93,6 +95,8 @@ class NeighbourSearch {
   long full_searches() const { return full_searches_; }
   long reuses() const { return reuses_; }
   long particle_searches() const { return particle_searches_; }
+  /// Finer grids built for particles of small h (see build_fine_grids), over all updates.
+  long fine_grids_built() const { return fine_grids_built_; }
 
  private:
   // The full search: grid, candidates within (1 + search_margin) 2h of every particle, h by the
@@ -133,6 +137,7 @@ class NeighbourSearch {
   // its candidates; count the search.
   void search_flagged(Particles<D>& p, const Box<D>& box, const SmoothingLengthRule& rule) {
     grid_.build(p.position, box, cell_size(p.smoothing_length));
+    build_fine_grids(p, box);
     std::string error;
     long searched = 0;
 #pragma omp parallel for schedule(dynamic, 1) reduction(+ : searched) if (blocks_.size() > 1)
@@ -254,21 +259,134 @@ class NeighbourSearch {
   // in three: a branch would be mispredicted too often).
   void gather(const Particles<D>& p, std::size_t i, double radius, Candidates& found) const {
     found.clear();
+    const FineGrid* fine = fine_grid_for(p.position[i], radius);
+    if (fine) {
+      gather_in<true>(fine->grid, fine->index.data(), p.position[i], i, radius, found);
+    } else {
+      gather_in<false>(grid_, nullptr, p.position[i], i, radius, found);
+    }
+  }
+
+  // The same from one grid; `mapped`: the grid holds a subset, its k-th particle is index[k].
+  template <bool mapped>
+  static void gather_in(const CellGrid<D>& grid, const std::uint32_t* particle, const Vec<D>& at,
+                        std::size_t i, double radius, Candidates& found) {
     const double radius2 = radius * radius;
     const auto self = static_cast<std::uint32_t>(i);
-    grid_.for_each_block_within(
-        p.position[i], radius,
+    grid.for_each_block_within(
+        at, radius,
         [&](const std::uint32_t* index, const double* r2, std::size_t count, Image image) {
           found.reserve_more(count);
           std::size_t end = found.count;
           for (std::size_t k = 0; k < count; ++k) {
-            found.index[end] = index[k];
+            const std::uint32_t j = mapped ? particle[index[k]] : index[k];
+            found.index[end] = j;
             found.image[end] = image;
             found.r2[end] = r2[k];
-            end += (r2[k] < radius2) & !(index[k] == self && image == 0);
+            end += (r2[k] < radius2) & !(j == self && image == 0);
           }
           found.count = end;
         });
+  }
+
+  // --- Finer grids where h is small -----------------------------------------------------
+  //
+  // grid_'s cells are sized for the median h (half the search radius), and enlarged until
+  // there are at most a few per particle.  Where h spans a wide range, a particle of small h
+  // scans far more particles than it keeps: in chapter 6's collapse the centre's h is a
+  // twentieth of the median, and after the bounce the sphere's outer gas spreads the grid
+  // over a box a hundred times the core, so the cells grow larger still -- at t = 3 a search
+  // scanned 40 particles for each one it kept.  So the particles searched whose radius fits in
+  // a quarter of grid_'s cell or less (levels l >= 2, cells 2^-l of grid_'s) get grids of
+  // their own level: each covers the box around the particles of its level that search, wide
+  // enough for their radius grown once by half, and holds every particle in that box.  A
+  // search whose sphere does not fit in its level's box (its radius grew) uses the next
+  // coarser grid that holds it, at last grid_.  Only in boxes with no periodic axis (the
+  // images would need the box's whole width).  The candidates' order then depends on the
+  // grid that found them -- the same for any number of threads.
+  struct FineGrid {
+    CellGrid<D> grid;
+    std::vector<std::uint32_t> index;  // the grid's k-th particle is particle index[k]
+    std::vector<Vec<D>> position;      // (room for its positions)
+    Vec<D> lo, hi;                     // the box in which it holds every particle
+    bool used = false;
+  };
+  static constexpr int first_fine_level = 2, max_fine_levels = 10;
+
+  // The level of a search radius: how many halvings of grid_'s cell still hold the radius
+  // (times the fraction of cell_size()).
+  int fine_level(double radius) const {
+    const double fraction = D == 1 ? 1.0 : 0.5;
+    const double ratio = coarse_cell_ / (fraction * radius);
+    if (!(ratio > 2.0)) return 0;
+    int level = std::ilogb(ratio);
+    if (std::ldexp(1.0, level) < ratio) ++level;  // (cells of at most fraction * radius)
+    return std::min(level, first_fine_level + max_fine_levels - 1);
+  }
+
+  void build_fine_grids(const Particles<D>& p, const Box<D>& box) {
+    for (FineGrid& f : fine_) f.used = false;
+    any_fine_ = false;
+    for (int a = 0; a < D; ++a) {
+      if (box.periodic[a]) return;
+    }
+    coarse_cell_ = grid_.cell_size(0);
+    for (int a = 1; a < D; ++a) coarse_cell_ = std::min(coarse_cell_, grid_.cell_size(a));
+    const std::size_t n = p.size();
+    // The box of each level's searching particles.
+    const double inf = std::numeric_limits<double>::infinity();
+    std::array<Vec<D>, max_fine_levels> lo, hi;
+    lo.fill(Vec<D>::Constant(inf));
+    hi.fill(Vec<D>::Constant(-inf));
+    bool any = false;
+    for (std::size_t i = 0; i < n; ++i) {
+      if (!search_again_[i]) continue;
+      const int l = fine_level(K::support * p.smoothing_length[i] * (1.0 + search_margin));
+      if (l < first_fine_level) continue;
+      const auto k = static_cast<std::size_t>(l - first_fine_level);
+      lo[k] = lo[k].cwiseMin(p.position[i]);
+      hi[k] = hi[k].cwiseMax(p.position[i]);
+      any = true;
+    }
+    if (!any) return;
+    if (fine_.size() < static_cast<std::size_t>(max_fine_levels)) fine_.resize(max_fine_levels);
+    const double fraction = D == 1 ? 1.0 : 0.5;
+    for (std::size_t k = 0; k < static_cast<std::size_t>(max_fine_levels); ++k) {
+      if (!(lo[k][0] <= hi[k][0])) continue;
+      FineGrid& f = fine_[k];
+      const double cell = std::ldexp(coarse_cell_, -(static_cast<int>(k) + first_fine_level));
+      // (the largest radius of the level is 2 cells / fraction; grown once by half)
+      const double margin = 1.5 * 2.0 * cell / fraction;
+      f.lo = lo[k].array() - margin;
+      f.hi = hi[k].array() + margin;
+      f.index.clear();
+      f.position.clear();
+      for (std::size_t j = 0; j < n; ++j) {
+        const Vec<D>& x = p.position[j];
+        if ((x.array() >= f.lo.array()).all() && (x.array() <= f.hi.array()).all()) {
+          f.index.push_back(static_cast<std::uint32_t>(j));
+          f.position.push_back(x);
+        }
+      }
+      f.grid.build(f.position, box, cell);
+      f.used = true;
+      any_fine_ = true;
+      ++fine_grids_built_;
+    }
+  }
+
+  // The finest grid whose cells suit `radius` and whose box holds the sphere about `at`
+  // (null: grid_).
+  const FineGrid* fine_grid_for(const Vec<D>& at, double radius) const {
+    if (!any_fine_) return nullptr;
+    const double reach = 1.01 * radius;  // (a little more: the box test is not the distance's)
+    for (int l = fine_level(radius); l >= first_fine_level; --l) {
+      const FineGrid& f = fine_[static_cast<std::size_t>(l - first_fine_level)];
+      if (f.used && ((at.array() - reach) >= f.lo.array()).all() &&
+          ((at.array() + reach) <= f.hi.array()).all())
+        return &f;
+    }
+    return nullptr;
   }
 
   // Choose h_i by the rule, growing the search radius until the candidates suffice; returns
@@ -487,6 +605,9 @@ class NeighbourSearch {
 
   static constexpr std::size_t block_size = 512;  // particles per block (about)
   CellGrid<D> grid_;
+  std::vector<FineGrid> fine_;  // level first_fine_level + k at k (see build_fine_grids)
+  bool any_fine_ = false;
+  double coarse_cell_ = 0;  // grid_'s smallest cell side
   std::vector<Block> blocks_;
   NeighbourList<D> list_;
   // Per particle: its candidates (entries first_..last_ of its block's) and the radius within
@@ -517,6 +638,7 @@ class NeighbourSearch {
   std::vector<double> h_floor_;    // the smallest h near each particle (find_reverse)
   std::vector<double> farthest2_;  // the largest r_ij^2 among each particle's kept pairs
   long searches_ = 0, full_searches_ = 0, reuses_ = 0, particle_searches_ = 0;
+  long fine_grids_built_ = 0;
   std::vector<std::size_t> received_;    // assemble_list: one-sided pairs per receiving particle
   std::vector<std::size_t> side_start_;  // and where each one's pairs start in side_
   std::vector<Neighbour> side_;          // the pairs of particles that receive one-sided ones

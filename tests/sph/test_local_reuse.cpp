@@ -211,3 +211,38 @@ TEST_CASE("a collapsing cloud whose h spans a factor 30 keeps its list equal to 
   // Candidates are kept: fewer than half the particles are searched again per update.
   CHECK(search.particle_searches() < static_cast<long>(p.size()) * (1 + 24 / 2));
 }
+
+TEST_CASE("a dense clump and a far, lone particle in a wide cloud: finer grids, the same list",
+          "[neighbours]") {
+  // A cloud of large h with a clump 200 times denser (h a sixth of the cloud's) and one particle
+  // far out, started with a small h: the clump's particles search on finer grids than the
+  // cloud's; the lone particle's search grows past its finer grid's box and falls back to the
+  // coarser grids.  After every update the list must equal brute force.
+  std::mt19937_64 rng(7);
+  std::uniform_real_distribution<double> unit(-1.0, 1.0);
+  sph::Particles<3> p;
+  const auto ball = [&](double radius, const sph::Vec<3>& centre, std::size_t count) {
+    for (std::size_t k = 0; k < count;) {
+      const sph::Vec<3> x(unit(rng), unit(rng), unit(rng));
+      if (x.norm() > 1.0) continue;
+      p.add(centre + radius * x, sph::Vec<3>::Zero(), 1.0);
+      ++k;
+    }
+  };
+  ball(1.0, sph::Vec<3>::Zero(), 1500);
+  ball(0.1, sph::Vec<3>(0.4, -0.2, 0.1), 1000);
+  p.add(sph::Vec<3>(3.0, 0.0, 0.0), sph::Vec<3>::Zero(), 1.0);
+  for (auto& h : p.smoothing_length) h = 0.02;
+  const auto rule = sph::SmoothingLengthRule::neighbour_number(40, 4);
+  sph::NeighbourSearch<3> search;
+  for (int step = 0; step < 6; ++step) {
+    for (auto& x : p.position) x *= 0.99;
+    search.update(p, sph::Box<3>::open(), rule);
+    REQUIRE(listed(search.list(), p.size()) == brute_force(p, sph::Box<3>::open()));
+  }
+  const auto [h_min, h_max] =
+      std::minmax_element(p.smoothing_length.begin(), p.smoothing_length.end());
+  INFO("h from " << *h_min << " to " << *h_max << "; finer grids " << search.fine_grids_built());
+  CHECK(*h_max / *h_min > 5);
+  CHECK(search.fine_grids_built() > 0);
+}
