@@ -570,8 +570,10 @@ TreeStudy step2_tree(const app::Chapter& chapter, const Parameters& par) {
 /// the tests, whose centre holds many particles with small forces -- the same \f$ \alpha \f$
 /// gives a largest error a third of the angle's, and on the collapsed sphere at t = 0.8 (22000
 /// particles, a development run) it takes 44 % fewer multipoles for a smaller largest error.
-/// In the right panel its points lie below and left of the quadrupoles': for a given time, the
-/// smaller error.  (Its rows are measured with the accelerations of earlier evaluations at the
+/// In the right panel of the recorded run its points lie on the quadrupoles' line: for a given
+/// time, about the same error (in a run on a machine with AVX2 they lay below and left of it;
+/// an evaluation takes ten milliseconds here, and such timings vary from run to run).
+/// (Its rows are measured with the accelerations of earlier evaluations at the
 /// same positions, the best case; in a run they are a step old.)  The chapter's runs keep the
 /// geometric criterion, the one the recorded numbers were made with; `--relative` switches
 /// them.
@@ -1334,7 +1336,7 @@ Extreme step7_extreme(const Parameters& par, const Collapse& c) {
 /// 0.95-1.2): what limits it is not resolution but the gas it lets through the shock.  Does the
 /// modified viscosity buy accuracy per CPU second in the collapse it was designed for?  In
 /// velocity, up to about 32768 particles, yes: its infall is right, and with 1024 particles it
-/// beats the standard viscosity's 8192-particle \f$ L_1(v_r) \f$ in a sixth of the time.  In
+/// beats the standard viscosity's 8192-particle \f$ L_1(v_r) \f$ in a fifth of the time.  In
 /// density, and beyond that resolution, no; and its energy error is the largest.  The switch is
 /// the best buy of the three.
 ///
@@ -1397,9 +1399,9 @@ Extreme step7_extreme(const Parameters& par, const Collapse& c) {
 ///    times larger at almost the same cost.
 ///  - `--relative 0.001`: every run with the tree's relative criterion (Step 2); the energies
 ///    of Fig 5 hardly change, and the step at t = 0.8 takes 0.88 of the time (the bench,
-///    22000 particles) -- but at this chapter's 8192 particles the standard run to t = 1.6
-///    took 0.995 of the time: there the near field, which the criterion leaves as it is, is
-///    most of the tree's work.
+///    22000 particles, on a machine with AVX2) -- but at this chapter's 8192 particles the
+///    standard run to t = 1.6 took 0.995 of the time: there the near field, which the
+///    criterion leaves as it is, is most of the tree's work.
 ///  - `--eta 0 --softening 0.01`: the modified viscosity without its collective term; its
 ///    energy is then conserved to about \f$ 10^{-3} \f$, and its kinetic energy still peaks
 ///    above the reference's (0.50 at 2048 particles): the restricted term alone does not stop
