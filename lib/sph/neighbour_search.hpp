@@ -95,8 +95,10 @@ class NeighbourSearch {
   long full_searches() const { return full_searches_; }
   long reuses() const { return reuses_; }
   long particle_searches() const { return particle_searches_; }
-  /// Finer grids built for particles of small h (see build_fine_grids), over all updates.
+  /// Finer grids built for particles of small h (see build_fine_grids), over all updates; and
+  /// the searches whose sphere did not fit in their level's grid and went to a coarser one.
   long fine_grids_built() const { return fine_grids_built_; }
+  long fine_grid_fallbacks() const { return fine_fallbacks_; }
 
  private:
   // The full search: grid, candidates within (1 + search_margin) 2h of every particle, h by the
@@ -380,13 +382,21 @@ class NeighbourSearch {
   const FineGrid* fine_grid_for(const Vec<D>& at, double radius) const {
     if (!any_fine_) return nullptr;
     const double reach = 1.01 * radius;  // (a little more: the box test is not the distance's)
-    for (int l = fine_level(radius); l >= first_fine_level; --l) {
+    const int level = fine_level(radius);
+    for (int l = level; l >= first_fine_level; --l) {
       const FineGrid& f = fine_[static_cast<std::size_t>(l - first_fine_level)];
       if (f.used && ((at.array() - reach) >= f.lo.array()).all() &&
-          ((at.array() + reach) <= f.hi.array()).all())
+          ((at.array() + reach) <= f.hi.array()).all()) {
+        if (l < level) count_fallback();
         return &f;
+      }
     }
+    if (level >= first_fine_level) count_fallback();
     return nullptr;
+  }
+  void count_fallback() const {
+#pragma omp atomic
+    ++fine_fallbacks_;
   }
 
   // Choose h_i by the rule, growing the search radius until the candidates suffice; returns
@@ -639,6 +649,7 @@ class NeighbourSearch {
   std::vector<double> farthest2_;  // the largest r_ij^2 among each particle's kept pairs
   long searches_ = 0, full_searches_ = 0, reuses_ = 0, particle_searches_ = 0;
   long fine_grids_built_ = 0;
+  mutable long fine_fallbacks_ = 0;      // (counted by the searching threads, atomically)
   std::vector<std::size_t> received_;    // assemble_list: one-sided pairs per receiving particle
   std::vector<std::size_t> side_start_;  // and where each one's pairs start in side_
   std::vector<Neighbour> side_;          // the pairs of particles that receive one-sided ones

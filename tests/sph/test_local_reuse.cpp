@@ -212,12 +212,63 @@ TEST_CASE("a collapsing cloud whose h spans a factor 30 keeps its list equal to 
   CHECK(search.particle_searches() < static_cast<long>(p.size()) * (1 + 24 / 2));
 }
 
+TEST_CASE("a dense clump in a wide cloud: finer grids, and searches that outgrow them",
+          "[neighbours]") {
+  // A cloud of large h around a ball 40 times denser, whose x > 0 half starts with an h eight
+  // times too small: those particles search on a finer grid than the ball's other half, and
+  // as their radius grows past what their level's box allows, on coarser grids -- the other
+  // half's, whose box ends near x = 0, or the main one.  Every other update is partial (a third
+  // of the particles active, as with individual time steps).  After every update the list
+  // must equal brute force.
+  std::mt19937_64 rng(7);
+  std::uniform_real_distribution<double> unit(-1.0, 1.0);
+  sph::Particles<3> p;
+  const auto ball = [&](double radius, std::size_t count) {
+    for (std::size_t k = 0; k < count;) {
+      const sph::Vec<3> x(unit(rng), unit(rng), unit(rng));
+      if (x.norm() > 1.0) continue;
+      p.add(radius * x, sph::Vec<3>::Zero(), 1.0);
+      ++k;
+    }
+  };
+  ball(1.0, 600);
+  ball(0.1, 2000);
+  for (std::size_t i = 0; i < p.size(); ++i) {
+    const bool in_ball = p.position[i].norm() < 0.1;
+    p.smoothing_length[i] = !in_ball ? 0.2 : p.position[i][0] < 0 ? 0.012 : 0.0015;
+  }
+  const auto rule = sph::SmoothingLengthRule::neighbour_number(40, 4);
+  sph::NeighbourSearch<3> search;
+  std::vector<std::uint32_t> active;
+  for (std::uint32_t i = 0; i < p.size(); i += 3) active.push_back(i);
+  for (int step = 0; step < 6; ++step) {
+    for (auto& x : p.position) x *= 0.995;
+    if (step % 2 == 0) {
+      search.update(p, sph::Box<3>::open(), rule);
+      REQUIRE(listed(search.list(), p.size()) == brute_force(p, sph::Box<3>::open()));
+    } else {
+      search.update(p, sph::Box<3>::open(), rule, sph::ActiveSet{&active});
+      const auto all = brute_force(p, sph::Box<3>::open());
+      const auto found = listed(search.list(), p.size());
+      for (std::uint32_t i : active) {
+        const auto first = all.lower_bound({i, 0, 0}), last = all.lower_bound({i + 1, 0, 0});
+        REQUIRE(std::set(first, last) ==
+                std::set(found.lower_bound({i, 0, 0}), found.lower_bound({i + 1, 0, 0})));
+      }
+    }
+  }
+  INFO("finer grids " << search.fine_grids_built() << ", fallbacks "
+                      << search.fine_grid_fallbacks());
+  CHECK(search.fine_grids_built() > 0);
+  CHECK(search.fine_grid_fallbacks() > 0);
+}
+
 TEST_CASE("a dense clump and a far, lone particle in a wide cloud: finer grids, the same list",
           "[neighbours]") {
   // A cloud of large h with a clump 200 times denser (h a sixth of the cloud's) and one particle
   // far out, started with a small h: the clump's particles search on finer grids than the
-  // cloud's; the lone particle's search grows past its finer grid's box and falls back to the
-  // coarser grids.  After every update the list must equal brute force.
+  // cloud's; the lone particle's search grows until its radius belongs to the main grid.
+  // After every update the list must equal brute force.
   std::mt19937_64 rng(7);
   std::uniform_real_distribution<double> unit(-1.0, 1.0);
   sph::Particles<3> p;
