@@ -293,19 +293,19 @@ class NeighbourSearch {
 
   // --- Finer grids where h is small -----------------------------------------------------
   //
-  // grid_'s cells are sized for the median h (half the search radius), and enlarged until
-  // there are at most a few per particle.  Where h spans a wide range, a particle of small h
-  // scans far more particles than it keeps: in chapter 6's collapse the centre's h is a
-  // twentieth of the median, and after the bounce the sphere's outer gas spreads the grid
-  // over a box a hundred times the core, so the cells grow larger still -- at t = 3 a search
-  // scanned 40 particles for each one it kept.  So the particles searched whose radius fits in
-  // a quarter of grid_'s cell or less (levels l >= 2, cells 2^-l of grid_'s) get grids of
-  // their own level: each covers the box around the particles of its level that search, wide
-  // enough for their radius grown once by half, and holds every particle in that box.  A
-  // search whose sphere does not fit in its level's box (its radius grew) uses the next
-  // coarser grid that holds it, at last grid_.  Only in boxes with no periodic axis (the
-  // images would need the box's whole width).  The candidates' order then depends on the
-  // grid that found them -- the same for any number of threads.
+  // grid_'s cells are sized for the median h (half the search radius), and enlarged until there are
+  // at most a few per particle.  Where h spans a wide range, a particle of small h scans far more
+  // particles than it keeps: in chapter 6's collapse the centre's h is a twentieth of the median,
+  // and after the bounce the sphere's outer gas spreads the grid over a box a hundred times the
+  // core, so the cells grow larger still -- at t = 3 a search scanned 40 particles for each one it
+  // kept.  So the particles searched for which grid_'s cells are more than twice the size
+  // cell_size() would choose for them (half the radius, the whole radius in 1D) get grids of their
+  // own level, with cells 2^-l of grid_'s (l >= 2) no larger than that size: each covers the box
+  // around the particles of its level that search, wide enough for their radius grown once by half,
+  // and holds every particle in that box.  A search whose sphere does not fit in its level's box
+  // (its radius grew) uses the next coarser grid that holds it, at last grid_.  Only in boxes with
+  // no periodic axis (the images would need the box's whole width).  The candidates' order then
+  // depends on the grid that found them -- the same for any number of threads.
   struct FineGrid {
     CellGrid<D> grid;
     std::vector<std::uint32_t> index;  // the grid's k-th particle is particle index[k]
