@@ -208,11 +208,11 @@ class NeighbourSearch {
     for (std::size_t i = 0; i < h.size(); i += step) sample.push_back(h[i]);
     std::nth_element(sample.begin(), sample.begin() + sample.size() / 2, sample.end());
     const double median = sample[sample.size() / 2];
-    // A cell of half the search radius visits 4-5 cells per axis but a smaller volume than
-    // cells of the full radius (2.5^D vs 3^D times the radius^D); in 1D the full radius wins.
-    const double fraction = D == 1 ? 1.0 : 0.5;
-    return fraction * K::support * median * (1.0 + search_margin);
+    return cell_fraction * K::support * median * (1.0 + search_margin);
   }
+  // A cell of half the search radius visits 4-5 cells per axis but a smaller volume than
+  // cells of the full radius (2.5^D vs 3^D times the radius^D); in 1D the full radius wins.
+  static constexpr double cell_fraction = D == 1 ? 1.0 : 0.5;
 
   // --- Reusing candidates from step to step: defined in candidate_reuse.hpp, which tells when
   // a particle's candidates still serve and how a new epoch starts.
@@ -315,14 +315,13 @@ class NeighbourSearch {
   };
   static constexpr int first_fine_level = 2, max_fine_levels = 10;
 
-  // The level of a search radius: how many halvings of grid_'s cell still hold the radius
-  // (times the fraction of cell_size()).
+  // The level of a search radius: the fewest halvings of grid_'s cell that bring it to at most
+  // cell_fraction * radius; 0 (grid_ itself) where grid_'s cell is within twice that.
   int fine_level(double radius) const {
-    const double fraction = D == 1 ? 1.0 : 0.5;
-    const double ratio = coarse_cell_ / (fraction * radius);
+    const double ratio = coarse_cell_ / (cell_fraction * radius);
     if (!(ratio > 2.0)) return 0;
     int level = std::ilogb(ratio);
-    if (std::ldexp(1.0, level) < ratio) ++level;  // (cells of at most fraction * radius)
+    if (std::ldexp(1.0, level) < ratio) ++level;
     return std::min(level, first_fine_level + max_fine_levels - 1);
   }
 
@@ -352,13 +351,12 @@ class NeighbourSearch {
     }
     if (!any) return;
     if (fine_.size() < static_cast<std::size_t>(max_fine_levels)) fine_.resize(max_fine_levels);
-    const double fraction = D == 1 ? 1.0 : 0.5;
     for (std::size_t k = 0; k < static_cast<std::size_t>(max_fine_levels); ++k) {
       if (!(lo[k][0] <= hi[k][0])) continue;
       FineGrid& f = fine_[k];
       const double cell = std::ldexp(coarse_cell_, -(static_cast<int>(k) + first_fine_level));
-      // (the largest radius of the level is 2 cells / fraction; grown once by half)
-      const double margin = 1.5 * 2.0 * cell / fraction;
+      // (the largest radius of the level is 2 cells / cell_fraction; grown once by half)
+      const double margin = 1.5 * 2.0 * cell / cell_fraction;
       f.lo = lo[k].array() - margin;
       f.hi = hi[k].array() + margin;
       f.index.clear();

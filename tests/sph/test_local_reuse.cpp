@@ -212,6 +212,22 @@ TEST_CASE("a collapsing cloud whose h spans a factor 30 keeps its list equal to 
   CHECK(search.particle_searches() < static_cast<long>(p.size()) * (1 + 24 / 2));
 }
 
+namespace {
+
+// `count` particles of unit mass at rest, uniformly in the ball of `radius` about `centre`.
+void add_ball(sph::Particles<3>& p, std::mt19937_64& rng, double radius, const sph::Vec<3>& centre,
+              std::size_t count) {
+  std::uniform_real_distribution<double> unit(-1.0, 1.0);
+  for (std::size_t k = 0; k < count;) {
+    const sph::Vec<3> x(unit(rng), unit(rng), unit(rng));
+    if (x.norm() > 1.0) continue;
+    p.add(centre + radius * x, sph::Vec<3>::Zero(), 1.0);
+    ++k;
+  }
+}
+
+}  // namespace
+
 TEST_CASE("a dense clump in a wide cloud: finer grids, and searches that outgrow them",
           "[neighbours]") {
   // A cloud of large h around a ball 40 times denser, whose x > 0 half starts with an h eight
@@ -221,18 +237,9 @@ TEST_CASE("a dense clump in a wide cloud: finer grids, and searches that outgrow
   // of the particles active, as with individual time steps).  After every update the list
   // must equal brute force.
   std::mt19937_64 rng(7);
-  std::uniform_real_distribution<double> unit(-1.0, 1.0);
   sph::Particles<3> p;
-  const auto ball = [&](double radius, std::size_t count) {
-    for (std::size_t k = 0; k < count;) {
-      const sph::Vec<3> x(unit(rng), unit(rng), unit(rng));
-      if (x.norm() > 1.0) continue;
-      p.add(radius * x, sph::Vec<3>::Zero(), 1.0);
-      ++k;
-    }
-  };
-  ball(1.0, 600);
-  ball(0.1, 2000);
+  add_ball(p, rng, 1.0, sph::Vec<3>::Zero(), 600);
+  add_ball(p, rng, 0.1, sph::Vec<3>::Zero(), 2000);
   for (std::size_t i = 0; i < p.size(); ++i) {
     const bool in_ball = p.position[i].norm() < 0.1;
     p.smoothing_length[i] = !in_ball ? 0.2 : p.position[i][0] < 0 ? 0.012 : 0.0015;
@@ -270,18 +277,9 @@ TEST_CASE("a dense clump and a far, lone particle in a wide cloud: finer grids, 
   // cloud's; the lone particle's search grows until its radius belongs to the main grid.
   // After every update the list must equal brute force.
   std::mt19937_64 rng(7);
-  std::uniform_real_distribution<double> unit(-1.0, 1.0);
   sph::Particles<3> p;
-  const auto ball = [&](double radius, const sph::Vec<3>& centre, std::size_t count) {
-    for (std::size_t k = 0; k < count;) {
-      const sph::Vec<3> x(unit(rng), unit(rng), unit(rng));
-      if (x.norm() > 1.0) continue;
-      p.add(centre + radius * x, sph::Vec<3>::Zero(), 1.0);
-      ++k;
-    }
-  };
-  ball(1.0, sph::Vec<3>::Zero(), 1500);
-  ball(0.1, sph::Vec<3>(0.4, -0.2, 0.1), 1000);
+  add_ball(p, rng, 1.0, sph::Vec<3>::Zero(), 1500);
+  add_ball(p, rng, 0.1, sph::Vec<3>(0.4, -0.2, 0.1), 1000);
   p.add(sph::Vec<3>(3.0, 0.0, 0.0), sph::Vec<3>::Zero(), 1.0);
   for (auto& h : p.smoothing_length) h = 0.02;
   const auto rule = sph::SmoothingLengthRule::neighbour_number(40, 4);
