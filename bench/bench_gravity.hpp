@@ -1,6 +1,6 @@
 #pragma once
 // The cost of self-gravity: the Barnes-Hut tree (sph/gravity/tree.hpp, default theta 0.3 with
-// quadrupoles, leaves of 12, groups of 16) on a uniform sphere and on the 1/r profile of the
+// quadrupoles, leaves of 16, groups of 32) on a uniform sphere and on the 1/r profile of the
 // Evrard collapse, at 8192, 22000 and 65536 particles; direct summation at 8192 for comparison.
 // Each evaluation is timed whole, the repeats alternate between the two profiles, and the
 // medians are quoted.  Reported per evaluation: the build (sorting into the tree, the nodes'

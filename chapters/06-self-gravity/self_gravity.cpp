@@ -50,21 +50,22 @@
 ///     their softening, a particle thrown far out.
 ///
 /// What we find, in short.  The tree with quadrupoles at its default opening angle
-/// \f$ \theta = 0.3 \f$ is 16 times faster than direct summation at 8192 particles and 46
+/// \f$ \theta = 0.3 \f$ is 17 times faster than direct summation at 8192 particles and 52
 /// times at 32768 (the recorded run; the ratio grows as \f$ N/\log N \f$), with a
-/// 99th-percentile force error of \f$ 4\times10^{-4} \f$.  Both of
+/// 99th-percentile force error of \f$ 3\times10^{-4} \f$.  Both of
 /// Selhammar's claims about the collapse reproduce as he states them: the standard viscosity's
 /// energy curves are shallower, and the modified viscosity's gradients are sharper (a shock four
 /// times thinner).  But the reference shows what neither claim says: the standard viscosity's
 /// curves are too shallow -- it brakes the infalling gas before the shock -- and the modified
 /// viscosity's are too deep: its kinetic energy peaks 27 % above the exact answer, its shock
-/// lags a third behind the reference's, and its collective term does not conserve momentum (a
-/// third of the momentum scale).  Its energy is kept only because the leapfrog pays the work
-/// done on the velocities the collective term changes at the kicks (chapter 5); a leapfrog that
-/// does not loses 6 % of it by t = 3.  The modern switch is the most accurate per CPU second in
-/// density, the modified viscosity in velocity, at every resolution of the series (1024 to 8192
-/// particles).  Softening gravity with the smoothing length costs 1 % of the energy by
-/// t = 3; a fixed softening length conserves it to \f$ 5\times10^{-5} \f$.  Details in
+/// lags a third behind the reference's, and its collective term does not conserve momentum
+/// (more than a quarter of the momentum scale).  Its energy is kept only because the leapfrog
+/// pays the work done on the velocities the collective term changes at the kicks (chapter 5); a
+/// leapfrog that does not loses 6 % of it by t = 3.  Per CPU second, the modern switch is the
+/// most accurate in density from about 2 s of run time on (and its error falls fastest with
+/// time), the modified viscosity in velocity at every resolution of the series (1024 to 8192
+/// particles).  Softening gravity with the smoothing length costs 1 % of the energy by t = 3; a
+/// fixed softening length conserves it to \f$ 4\times10^{-5} \f$.  Details in
 /// \ref ch06_findings "the findings".
 ///
 /// \section ch06_gravity The gravity of an SPH particle
@@ -542,33 +543,33 @@ TreeStudy step2_tree(const app::Chapter& chapter, const Parameters& par) {
   return study;
 }
 
-/// **Reading the accuracy table.**  On 8192 particles direct summation takes 0.176 s an
+/// **Reading the accuracy table.**  On 8192 particles direct summation takes 0.162 s an
 /// evaluation.  The quadrupole tree at the default \f$ \theta = 0.3 \f$ has a median error of
-/// \f$ 8.39\times10^{-5} \f$, a 99th percentile of \f$ 3.98\times10^{-4} \f$ and a maximum of
-/// \f$ 6.66\times10^{-4} \f$, with 1376 interactions a particle; monopoles at the same angle and
-/// the same interaction count reach \f$ 2.86\times10^{-3} \f$ and \f$ 1.09\times10^{-2} \f$, a
-/// maximum above the stricter target (\f$ 7\times10^{-3} \f$), though within the looser one.  The
-/// quadrupoles cost about an eighth more time (0.065 of direct summation's against 0.058) for a
-/// 99th percentile seven times smaller.  Above \f$ \theta = 0.6 \f$ the interactions stay at
-/// 999-1001 a particle and the maximum error at
-/// \f$ 6.72\times10^{-3} \f$ (quadrupoles) and \f$ 3.29\times10^{-2} \f$ (monopoles): there
+/// \f$ 7.34\times10^{-5} \f$, a 99th percentile of \f$ 3.18\times10^{-4} \f$ and a maximum of
+/// \f$ 7.50\times10^{-4} \f$, with 1579 interactions a particle; monopoles at the same angle and
+/// the same interaction count reach \f$ 2.81\times10^{-3} \f$ and \f$ 6.32\times10^{-3} \f$,
+/// within both targets but with little room under the stricter maximum
+/// (\f$ 7\times10^{-3} \f$).  The quadrupoles cost about as much time (0.059 of direct
+/// summation's against 0.057) for a 99th percentile nine times smaller.  Above
+/// \f$ \theta = 0.6 \f$ the interactions stay at 1189-1191 a particle and the maximum error at
+/// \f$ 6.84\times10^{-3} \f$ (quadrupoles) and \f$ 2.79\times10^{-2} \f$ (monopoles): there
 /// almost every cube that the angle would accept is opened anyway, because it may hold a particle
 /// within the softening range, and what remains is the near field, summed pair by pair.  That near
-/// field is why the cost falls so little with the angle -- from 2227 interactions at 0.2 to 1376 at
-/// 0.3 and 1026 at 0.5 -- and why an SPH code can afford a smaller angle than a pure N-body code.
-/// The potential energy is far more accurate than the forces (\f$ 6.8\times10^{-6} \f$ at the
+/// field is why the cost falls so little with the angle -- from 2515 interactions at 0.2 to 1579 at
+/// 0.3 and 1215 at 0.5 -- and why an SPH code can afford a smaller angle than a pure N-body code.
+/// The potential energy is far more accurate than the forces (\f$ 6.4\times10^{-6} \f$ at the
 /// default): it is a sum over all pairs, in which the errors of single interactions partly cancel.
-/// The net force of the default tree, \f$ 2.1\times10^{-6} \f$ of the forces' scale, is the
+/// The net force of the default tree, \f$ 9.1\times10^{-7} \f$ of the forces' scale, is the
 /// asymmetry of the walk: not round-off, but small against the forces' own error.
 ///
 /// The relative criterion spends its interactions differently.  At its default
-/// \f$ \alpha = 10^{-3} \f$ it needs 1172 interactions a particle against the angle's 1376, for
-/// a 99th percentile of \f$ 5.24\times10^{-4} \f$ and a maximum of \f$ 1.06\times10^{-3} \f$:
+/// \f$ \alpha = 10^{-3} \f$ it needs 1365 interactions a particle against the angle's 1579, for
+/// a 99th percentile of \f$ 4.79\times10^{-4} \f$ and a maximum of \f$ 1.06\times10^{-3} \f$:
 /// both targets met with room, but the maximum is larger than the angle's
-/// \f$ 6.66\times10^{-4} \f$.  On this 1/r sphere no pulls cancel except at the very centre, so
+/// \f$ 7.50\times10^{-4} \f$.  On this 1/r sphere no pulls cancel except at the very centre, so
 /// the criterion has little to redistribute; where they do cancel -- the random uniform sphere of
 /// the tests, whose centre holds many particles with small forces -- the same \f$ \alpha \f$
-/// gives a largest error a third of the angle's, and on the collapsed sphere at t = 0.8 (22000
+/// gives a largest error two fifths of the angle's, and on the collapsed sphere at t = 0.8 (22000
 /// particles, a development run) it takes 44 % fewer multipoles for a smaller largest error.
 /// In the right panel of the recorded run its points lie on the quadrupoles' line: for a given
 /// time, about the same error (in a run on a machine with AVX2 they lay below and left of it;
@@ -588,14 +589,15 @@ TreeStudy step2_tree(const app::Chapter& chapter, const Parameters& par) {
 /// stays flat if the cost grows as \f$ N \f$ and grows slowly if it grows as
 /// \f$ N\log N \f$.
 ///
-/// In the recorded run direct summation's time grows fourfold at each doubling of N (0.1720 s
-/// at 8192 particles, 0.6986 s at 16384, 2.8270 s at 32768), the tree's about twofold
-/// (0.0110 s, 0.0254 s, 0.0618 s, then 0.1635 s at 65536), so the tree's advantage grows with
-/// N: 15.7 times at 8192 particles, 45.7 at 32768.  Its time per particle rises from 1.34 to
-/// 2.49 microseconds between 8192 and 65536 particles: the \f$ \log N \f$ of the walk, and
-/// a walk that no longer fits the processor's caches.  (A run on a machine with AVX2 gave 2.13
-/// and 3.06 microseconds: timings vary with the machine, and on a shared one by a fifth or more
-/// from one run to the next; only ratios taken within one run compare two methods.)
+/// In the recorded run direct summation's time grows fourfold at each doubling of N (0.1618 s
+/// at 8192 particles, 0.6459 s at 16384, 2.6338 s at 32768), the tree's about twofold
+/// (0.0094 s, 0.0208 s, 0.0507 s, then 0.1060 s at 65536), so the tree's advantage grows with
+/// N: 17.2 times at 8192 particles, 52.0 at 32768.  Its time per particle rises from 1.15 to
+/// 1.62 microseconds between 8192 and 65536 particles: the \f$ \log N \f$ of the walk, and
+/// a walk that no longer fits the processor's caches.  (A run on a machine with AVX2, with the
+/// tree's earlier leaves of 12 and groups of 16, gave 2.13 and 3.06 microseconds: timings vary
+/// with the machine, and on a shared one by a fifth or more from one run to the next; only
+/// ratios taken within one run compare two methods.)
 /// Below 4096 particles the ratio is small, and the time per particle higher: the tree runs on
 /// one thread there, and the softened near field is most of such a small sphere.
 
@@ -736,11 +738,11 @@ FreeFallResult step3_free_fall(const app::Chapter& chapter, const Parameters& pa
 }
 
 /// **What the run shows.**  With 4096 particles and 970 steps, the three shells stand at
-/// 0.3501, 0.3491 and 0.3480 of their starting radii at 0.9 \f$ t_\mathrm{ff} \f$, where the
+/// 0.3500, 0.3491 and 0.3480 of their starting radii at 0.9 \f$ t_\mathrm{ff} \f$, where the
 /// analytic collapse gives 0.3492; the largest relative error of any shell up to that time is
-/// \f$ 4.92\times10^{-3} \f$, and the shells stay together after it (0.2269, 0.2248 and 0.2256
+/// \f$ 4.84\times10^{-3} \f$, and the shells stay together after it (0.2269, 0.2248 and 0.2256
 /// at 0.95 \f$ t_\mathrm{ff} \f$, analytic 0.2256).  The momentum drifts by
-/// \f$ 4.4\times10^{-6} \f$ of the momentum scale, the tree's asymmetry again (Step 2), summed over
+/// \f$ 3.5\times10^{-6} \f$ of the momentum scale, the tree's asymmetry again (Step 2), summed over
 /// the steps.  Gravity alone, then, does what it should; what follows adds the gas.
 
 /// \section ch06_fig5 Step 4: the Evrard collapse -- the energies (Fig 5)
@@ -823,7 +825,7 @@ struct Collapse {
 /// as much as the heights.  In the recorded run the kinetic energy of every run peaks close to
 /// the reference's t = 0.875 (standard 0.870, switch 0.867, modified 0.924), but the thermal
 /// energy does not: the standard viscosity and the switch reach their largest thermal energy
-/// at t = 1.112 and 1.097, after the reference's 1.065, and the modified viscosity at 1.033,
+/// at t = 1.110 and 1.097, after the reference's 1.065, and the modified viscosity at 1.036,
 /// before it.
 
 void print_energy_table(const Collapse& c, const Parameters& par) {
@@ -1109,8 +1111,8 @@ struct Extreme {
 /// steps.  The scale to compare the densities with is the initial density at the innermost
 /// particle: the Evrard sphere has \f$ M(r) = r^2 \f$, so the radius holding half a particle's
 /// mass is \f$ r = (2N)^{-1/2} \f$, where \f$ \rho = 1/(2\pi r) \f$ -- 20.4 at 8192 particles.
-/// The standard run's centre is compressed fifteen times beyond that (302.3), the modified
-/// run's ninety times (1840.4).  Every least step in the recorded run is set by the Courant
+/// The standard run's centre is compressed fifteen times beyond that (302.4), the modified
+/// run's ninety times (1797.2).  Every least step in the recorded run is set by the Courant
 /// condition of eq 7: the denser centre costs steps through its smaller h.
 ///
 /// The last column asks what individual time steps would save.  After every step each
@@ -1121,7 +1123,7 @@ struct Extreme {
 /// it counts nothing of what such a scheme costs besides.  Step 4 runs the scheme itself, with
 /// its limiter, which keeps neighbours' steps within a factor of four and so could only add
 /// updates: the standard run made 1.87 times fewer updates (this column: 1.91), the modified
-/// one 2.41 times (2.40).
+/// one 2.27 times (2.38).
 
 void collapsed_centre(const Parameters& par, const Collapse& c) {
   std::printf("  the collapsed centre (Step 4's runs):\n");
@@ -1146,9 +1148,9 @@ void collapsed_centre(const Parameters& par, const Collapse& c) {
 /// (1024 with `--quick`), to t = 1.3, with a budget of 200000 steps.  A code that cannot
 /// follow the collapse must say so: the run either reaches the end or stops with the
 /// simulation's message, which the step prints.  In the recorded run it reaches the end in
-/// 545 steps; the centre peaks at 892 at t = 1.084 and bounces, three times denser than the
-/// warm standard run with twice the particles (302.3); its least smoothing length,
-/// \f$ 1.02\times10^{-2} \f$, is about that run's, \f$ 1.05\times10^{-2} \f$.  What stops the
+/// 545 steps; the centre peaks at 893 at t = 1.080 and bounces, three times denser than the
+/// warm standard run with twice the particles (302.4); its least smoothing length,
+/// \f$ 1.03\times10^{-2} \f$, is about that run's, \f$ 1.05\times10^{-2} \f$.  What stops the
 /// collapse is discussed in \ref ch06_findings "the findings".
 
 void cold_collapse(const Parameters& par, Extreme& x) {
@@ -1209,8 +1211,8 @@ void close_pairs(const Parameters& par, Extreme& x) {
 /// larger than the sphere, and the sphere sits in a corner of it a dozen levels down.  The
 /// forces on the sphere should not notice.  We compare the other particles' accelerations with
 /// direct summation, and the far particle's with Newton's \f$ G(M - m)/r^2 \f$ for the rest of the
-/// sphere.  In the recorded run the rest keep a 99th percentile of \f$ 2.99\times10^{-4} \f$ and a
-/// maximum of \f$ 7.13\times10^{-4} \f$ -- the size of Step 2's errors at the default angle -- and
+/// sphere.  In the recorded run the rest keep a 99th percentile of \f$ 2.15\times10^{-4} \f$ and a
+/// maximum of \f$ 4.85\times10^{-4} \f$ -- the size of Step 2's errors at the default angle -- and
 /// the far particle's acceleration is \f$ 9.997556\times10^{-9} \f$ against
 /// \f$ 9.997559\times10^{-9} \f$.
 
@@ -1256,17 +1258,17 @@ Extreme step7_extreme(const Parameters& par, const Collapse& c) {
 /// \f$ 1.6\times10^{-3} \f$ at 32768 particles, the difference falling as \f$ N^{-0.68} \f$
 /// (the softening predicts \f$ N^{-2/3} \f$), and a net force of \f$ 10^{-17} \f$.  The tree
 /// at \f$ \theta = 0.3 \f$ with quadrupoles, on the Evrard sphere: median error
-/// \f$ 8\times10^{-5} \f$, 99th percentile \f$ 4.0\times10^{-4} \f$, maximum
-/// \f$ 6.7\times10^{-4} \f$ (both targets met with a factor 7 and 10 to spare); monopoles at
-/// the same angle: \f$ 2.9\times10^{-3} \f$ and \f$ 1.1\times10^{-2} \f$.  Its net force is
-/// \f$ 2\times10^{-6} \f$ of the forces' scale (direct summation: round-off).  One evaluation
-/// costs 1.34 microseconds per particle at 8192 particles and 2.49 at 65536 in the recorded run
+/// \f$ 7\times10^{-5} \f$, 99th percentile \f$ 3.2\times10^{-4} \f$, maximum
+/// \f$ 7.5\times10^{-4} \f$ (both targets met with a factor 9 to spare); monopoles at
+/// the same angle: \f$ 2.8\times10^{-3} \f$ and \f$ 6.3\times10^{-3} \f$.  Its net force is
+/// \f$ 9\times10^{-7} \f$ of the forces' scale (direct summation: round-off).  One evaluation
+/// costs 1.15 microseconds per particle at 8192 particles and 1.62 at 65536 in the recorded run
 /// (two threads of a shared machine; the benchmark program measures it on a quiet one): the
 /// \f$ N\log N \f$ line of `tree_cost.png`.  Why \f$ \theta = 0.3 \f$ and not the 0.5-0.7 of
 /// many codes: on a uniform sphere the 99th percentile at 0.5 is \f$ 4\times10^{-3} \f$, above
 /// the target, and the cost barely changes -- in an SPH code the near field, where every pair
 /// within twice the smoothing length is softened and summed one by one, is most of the work
-/// (1376 interactions a particle at 0.3, 1026 at 0.5; 19 % more time).  The free fall stays
+/// (1579 interactions a particle at 0.3, 1215 at 0.5; 18 % more time).  The free fall stays
 /// within \f$ 5\times10^{-3} \f$ of the analytic collapse up to 0.9 \f$ t_\mathrm{ff} \f$.
 ///
 /// **Fig 5** (`fig5_energies.png`).  The reference: \f$ E_\mathrm{kin} \f$ peaks at 0.451
@@ -1276,21 +1278,21 @@ Extreme step7_extreme(const Parameters& par, const Collapse& c) {
 /// | viscosity | peak kinetic | peak thermal | deepest W | steps | energy change | momentum drift |
 /// |:--|--:|--:|--:|--:|--:|--:|
 /// | reference | 0.451 | 1.761 | -2.547 | | | |
-/// | standard | 0.344 | 1.469 | -2.215 | 1369 | 8.8e-3 | 1.4e-4 |
-/// | modified | 0.574 | 2.360 | -3.471 | 3146 | 1.4e-2 | 0.36 |
-/// | switch | 0.375 | 1.517 | -2.289 | 921 | 9.3e-3 | 1.0e-4 |
-/// | standard, softening 0.01 | 0.347 | 1.487 | -2.233 | 1424 | 4.7e-5 | 2.8e-4 |
+/// | standard | 0.344 | 1.469 | -2.215 | 1368 | 8.8e-3 | 8.4e-5 |
+/// | modified | 0.574 | 2.376 | -3.483 | 3033 | 1.4e-2 | 0.28 |
+/// | switch | 0.375 | 1.517 | -2.289 | 920 | 9.3e-3 | 8.4e-5 |
+/// | standard, softening 0.01 | 0.347 | 1.487 | -2.233 | 1424 | 4.3e-5 | 2.7e-4 |
 ///
 /// (energy change: \f$ |E(3) - E(0)|/|E(0)| \f$; momentum drift: \f$ |\mathbf P(3)| \f$ over
 /// \f$ \sum m|\mathbf v| \f$.)
 ///
 /// Selhammar: "the curves are more shallow" with the standard viscosity.  **Reproduced**: its
-/// largest thermal energy is 1.469 against the modified viscosity's 2.360, its deepest W -2.215
-/// against -3.471.  What the paper does not say, and the reference shows: the exact curves lie
+/// largest thermal energy is 1.469 against the modified viscosity's 2.376, its deepest W -2.215
+/// against -3.483.  What the paper does not say, and the reference shows: the exact curves lie
 /// between the two.  The standard viscosity's are too shallow, by 24 % in
 /// \f$ E_\mathrm{kin} \f$ -- it heats and brakes the gas as it falls, long before the shock
 /// (Fig 6) -- and the modified viscosity's are too deep, by 27 % in \f$ E_\mathrm{kin} \f$
-/// and 36 % in W.  Its collapse goes further than the exact one can: the gas passes through
+/// and 37 % in W.  Its collapse goes further than the exact one can: the gas passes through
 /// the shock without enough dissipation (the restricted term acts only where the approach
 /// exceeds what the compression explains, which in a converging flow near the centre it
 /// rarely does).  Its energy is conserved as the others' are, because the leapfrog pays the
@@ -1308,7 +1310,7 @@ Extreme step7_extreme(const Parameters& par, const Collapse& c) {
 /// (`sph::Leapfrog::work_of_term_kicks = false`), against \f$ 2\times10^{-5} \f$ for the
 /// standard viscosity; and the kinetic energy peaks at 0.59 either way, so the payment is not
 /// why the collapse goes too deep.  Since the collective term is not a pair force, momentum
-/// drifts by a third of \f$ \sum m|\mathbf v| \f$.
+/// drifts by more than a quarter of \f$ \sum m|\mathbf v| \f$.
 ///
 /// **Figs 6-7** (`fig6_standard.png`, `fig7_modified.png`).  Selhammar: "the main difference
 /// between these models are the sharper gradients with modified artificial viscosity".
@@ -1324,14 +1326,14 @@ Extreme step7_extreme(const Parameters& par, const Collapse& c) {
 ///
 /// **Error against run time** (`evrard_error_vs_time.png`, t = 0.8).  At 8192 particles
 /// \f$ L_1(\log_{10}\rho) \f$ is 0.100 (standard), 0.084 (modified), 0.081 (switch) and
-/// \f$ L_1(v_r) \f$ 0.164, 0.086, 0.116, in 4.3, 8.5 and 4.5 s (the run in `output.txt`, two
+/// \f$ L_1(v_r) \f$ 0.164, 0.085, 0.116, in 3.7, 7.6 and 4.9 s (the run in `output.txt`, two
 /// threads of a machine with AVX-512).  From 1024 to 8192 particles
 /// the modified viscosity converges at order 0.43 in density, the standard one at 0.71 and the
-/// switch at 0.95.  With `--largest 65536` (16 minutes) the series goes on to 65536 particles,
-/// and the lines part: there \f$ L_1(\log_{10}\rho) \f$ is 0.045 (standard, 91 s), 0.070
-/// (modified, 204 s) and 0.035 (switch, 118 s), and \f$ L_1(v_r) \f$ 0.067, 0.071 and 0.046
-/// (measured before the leapfrog paid the collective term's work, which moved the modified
-/// viscosity's errors at 8192 particles in the third digit).
+/// switch at 0.95.  With `--largest 65536` (about 15 minutes in all) the series goes on to
+/// 65536 particles, and the lines part: there \f$ L_1(\log_{10}\rho) \f$ is 0.045
+/// (standard, 87 s), 0.070 (modified, 164 s) and 0.035 (switch, 91 s), and \f$ L_1(v_r) \f$
+/// 0.067, 0.071 and 0.046 (a run with `--particles 2048 --largest 65536` on the machine of
+/// `output.txt`, whose rows up to 8192 particles are those of `output.txt` to the digit).
 /// The modified viscosity's errors stall (order 0.36 from 1024 to 65536 particles, the others
 /// 0.95-1.2): what limits it is not resolution but the gas it lets through the shock.  Does the
 /// modified viscosity buy accuracy per CPU second in the collapse it was designed for?  In
@@ -1341,36 +1343,39 @@ Extreme step7_extreme(const Parameters& par, const Collapse& c) {
 /// the best buy of the three.
 ///
 /// **Extreme cases.**  The standard run's centre reaches \f$ \rho = 302 \f$ (1270 times the mean
-/// density), the modified one's 1840, with h down to 0.006 and a step of \f$ 3.8\times10^{-4}
+/// density), the modified one's 1800, with h down to 0.006 and a step of \f$ 3.9\times10^{-4}
 /// \f$; the colder collapse (u = 0.005, 4096 particles) bounces at t = 1.08 with a central
-/// density of 892 and runs on: at this resolution the smoothing length, not the physics, stops
+/// density of 893 and runs on: at this resolution the smoothing length, not the physics, stops
 /// the collapse, far below the \f$ 10^6 \f$ contrast of the continuous problem.  Two particles
 /// 0.1 h apart feel exactly the softened pair force, equal and opposite; two at one point feel
 /// none.  A particle thrown out to \f$ 10^4 R \f$ leaves the others' force errors at their
-/// usual size (maximum \f$ 7\times10^{-4} \f$) and feels \f$ GM/r^2 \f$ to
+/// usual size (maximum \f$ 5\times10^{-4} \f$) and feels \f$ GM/r^2 \f$ to
 /// \f$ 3\times10^{-7} \f$.
 ///
-/// **What it costs.**  At 8192 particles the standard run to t = 3 takes 44 s in the recorded
-/// run (two threads of an AMD EPYC with AVX-512; 1369 steps), the modified viscosity's 123 s:
-/// its denser centre needs 3146 steps, each 1.2 times the standard's cost (the collective
+/// **What it costs.**  At 8192 particles the standard run to t = 3 takes 38 s in the recorded
+/// run (two threads of an AMD EPYC with AVX-512; 1368 steps), the modified viscosity's 114 s:
+/// its denser centre needs 3033 steps, each 1.4 times the standard's cost (the collective
 /// term's sums).  With individual time steps (Step 4's last two runs) the same collapses take
-/// 33 s and 76 s: 1.33 and 1.62 times faster, for 1.87 and 2.41 times fewer particle updates,
-/// with energy extremes within 0.2 % (standard) and 0.9 % (modified) of the runs with one step
+/// 26 s and 67 s: 1.48 and 1.70 times faster, for 1.87 and 2.27 times fewer particle updates,
+/// with energy extremes within 0.2 % (standard) and 1.2 % (modified) of the runs with one step
 /// for all, and a smaller energy error (\f$ 5.9\times10^{-3} \f$ against
-/// \f$ 8.8\times10^{-3} \f$; \f$ 3.8\times10^{-3} \f$ against
+/// \f$ 8.8\times10^{-3} \f$; \f$ 3.5\times10^{-3} \f$ against
 /// \f$ 1.4\times10^{-2} \f$).  The target for the 8192-particle collapse, 60 s, is **met**,
 /// with one step for all and with individual steps (on a machine with AVX2 the same runs took
 /// 70 and 45 s: met with individual steps only).  The gain is less than the updates saved: there
-/// are more steps (1984 against 1369: the power-of-two levels round every step down, by 28 % on
+/// are more steps (1982 against 1368: the power-of-two levels round every step down, by 28 % on
 /// average), and each step still drifts every particle, builds the tree and keeps the neighbour
-/// search's bookkeeping for all of them; an update costs 1.4 (standard) and 1.5 (modified)
-/// times one with one step for all.  The whole chapter takes 6.5 minutes (10 on the machine
-/// with AVX2), against a target of 3: **not met**; Figs 5-7 and the claims use one step for
-/// all, as the paper does, and the modified viscosity's run alone takes two of the three
-/// minutes.  The benchmark (`build/bench/bench --only evrard`) times the step at t = 0.8 at
-/// 3.5-3.8 microseconds a particle with 22000 particles, of which the tree is 1.9, and 3.1
-/// (tree 1.5) with the relative criterion in the quieter of two runs; the target for the whole
-/// step is 3: **not met** (on the machine with AVX2: 5.5 and 4.9).  What makes the step as
+/// search's bookkeeping for all of them; an update costs 1.3 times one with one step for all
+/// (the design page says where the time goes).  The whole chapter takes 5.9 minutes (10 on the
+/// machine with AVX2), against a target of 3: **not met**; Figs 5-7 and the claims use one step
+/// for all, as the paper does, and the modified viscosity's run alone takes nearly two of the
+/// three minutes.  The benchmark (`build/bench/bench --only evrard`) times the step at t = 0.8
+/// at 3.2-3.6 microseconds a particle with 22000 particles, of which the tree is 1.7-1.8, and
+/// at 2.8-3.1 (tree 1.4) with the relative criterion, whose forces meet the same accuracy
+/// targets (Step 2).  Against the target for the whole step, 3: with the relative criterion
+/// **at the target** (below it in two of four runs, above it in two, by 2 %), with the
+/// geometric one **not met** (four runs; on the machine with AVX2, before the tree's leaves and
+/// groups were enlarged: 5.5 and 4.9).  What makes the step as
 /// fast as it is: the tree's near field sums its softened pairs several at a time in SIMD
 /// registers (the design page says which compiler flag allows it), about 1.4 times faster
 /// than one pair at a time; the neighbour search bounds how far a particle's neighbourhood has
@@ -1381,14 +1386,16 @@ Extreme step7_extreme(const Parameters& par, const Collapse& c) {
 /// search near the centre had scanned 40 particles for each one it kept, and the grid search
 /// was 11 % of the modified run's step at t = 3; with the finer grids, 3 %.  Still a fifth of
 /// the particles search again every step at t = 0.8 (the shock tube: 4 %), and the tree sums
-/// some 2000 interactions a particle -- half of them single particles of nearby leaves, too
-/// near a group, or within its softening range, to be summed as multipoles.  (The finer grids
-/// find the same candidates in another order, so the sums run in another order: the modified
-/// run's largest thermal energy moved by 0.9 %, from 2.382 to 2.360 -- its collective term
-/// amplifies round-off, as Step 4's checks say -- and its run with individual steps took 76 s
-/// against 107 s just before, on the same machine.  The other runs printed the same numbers
-/// but for the last digit of two: the switch's momentum drift and the fixed softening's energy
-/// change.)
+/// some 3000 interactions a particle -- half of them single particles of nearby leaves, too
+/// near a group, or within its softening range, to be summed as multipoles.  The leaves hold
+/// up to 16 particles and the groups up to 32, where they were 12 and 16: on processors with
+/// 16 floats to a SIMD register single particles are cheap, and larger groups walk the tree
+/// fewer times (the tree 2-9 % faster in the collapse; the design page).  (Both changes moved
+/// the modified run's numbers, which its collective term amplifies, as Step 4's checks say:
+/// the finer grids find the same candidates in another order, and its largest thermal energy
+/// moved by 0.9 %, from 2.382 to 2.360; the larger leaves accept other nodes, changing every
+/// force at the tree's error, and it moved by 0.7 %, to 2.376.  The standard viscosity's
+/// extremes printed the same to four digits.)
 
 /// \section ch06_try What to try
 ///
@@ -1462,7 +1469,8 @@ Extreme step7_extreme(const Parameters& par, const Collapse& c) {
 ///    with fewer particle updates.  The bound is wider than the standard run needs (0.17 % in
 ///    the recorded run): the modified viscosity's collective term amplifies any difference --
 ///    a change of round-off alone moved its largest thermal energy by 0.85 % in an earlier
-///    recorded run, a change in the order of its sums by 0.9 % -- and its own steps integrate
+///    recorded run, a change in the order of its sums by 0.9 %, the tree's larger leaves by
+///    0.7 % -- and its own steps integrate
 ///    differently, not just in the last bits;
 ///  - energy: the run with the fixed softening length changes its total energy by less than a
 ///    fifth of what the same run with softening h does -- the softening, not the integration,

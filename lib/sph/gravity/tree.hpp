@@ -62,9 +62,9 @@
 ///
 /// **How small must theta be?**  On a random uniform sphere of \f$ 10^4 \f$ particles
 /// (tests/sph/test_gravity.cpp) the default \f$ \theta = 0.3 \f$ with quadrupoles gives a
-/// median relative force error of \f$ 1.2\times10^{-4} \f$, a 99th percentile of
-/// \f$ 7\times10^{-4} \f$, and at most \f$ 4\times10^{-3} \f$ wherever the force is at
-/// least a tenth of the median one.  The largest error of all, about 1 %, belongs to the
+/// median relative force error of \f$ 1.0\times10^{-4} \f$, a 99th percentile of
+/// \f$ 7\times10^{-4} \f$, and at most \f$ 3\times10^{-3} \f$ wherever the force is at
+/// least a tenth of the median one.  The largest error of all, 0.7 %, belongs to the
 /// particle nearest the centre, where the pulls of all sides cancel (see below).  At
 /// \f$ \theta = 0.5 \f$ the median is still \f$ 5\times10^{-4} \f$, but the 99th
 /// percentile is \f$ 4\times10^{-3} \f$ and the worst particles are off by 2 to 5 %.  This
@@ -173,13 +173,16 @@ struct TreeGravity {
   /// Which opening criterion the walk uses (see the file comment).
   enum class Criterion { geometric, relative };
   /// alpha of the relative criterion: on a random uniform sphere of 10^4 particles a largest
-  /// error a third of the geometric default's, on a 1/r sphere 1.3 times, with 14 % and 20 %
+  /// error two fifths of the geometric default's, on a 1/r sphere the same, with 14 % and 20 %
   /// fewer interactions (tests/sph/test_gravity.cpp).
   static constexpr double default_relative_accuracy = 1e-3;
-  /// Leaves of at most 12 particles and groups of at most 16: the fastest on the bench, within
-  /// a few per cent of leaves of 8 to 16 and groups of 12 to 32.
-  static constexpr int default_leaf_size = 12;
-  static constexpr int default_group_size = 16;
+  /// Leaves of at most 16 particles and groups of at most 32.  Larger groups walk the tree
+  /// fewer times and sum more pairs each, and wider SIMD makes the pairs cheaper: with AVX-512
+  /// these took the tree on the collapse's states 2-9 % below leaves of 12 and groups of 16
+  /// (the choice on an AVX2 machine, where the two were within a few per cent); larger ones
+  /// (24 and 48, 32 and 64) are slower again at 22000 particles (docs/design.md).
+  static constexpr int default_leaf_size = 16;
+  static constexpr int default_group_size = 32;
   /// Nodes deeper than this are leaves, however many particles they hold.
   static constexpr int max_depth = 64;
 
