@@ -593,8 +593,9 @@ TreeStudy step2_tree(const app::Chapter& chapter, const Parameters& par) {
 /// at 8192 particles, 0.6459 s at 16384, 2.6338 s at 32768), the tree's about twofold
 /// (0.0094 s, 0.0208 s, 0.0507 s, then 0.1060 s at 65536), so the tree's advantage grows with
 /// N: 17.2 times at 8192 particles, 52.0 at 32768.  Its time per particle rises from 1.15 to
-/// 1.62 microseconds between 8192 and 65536 particles: the \f$ \log N \f$ of the walk, and
-/// a walk that no longer fits the processor's caches.  (A run on a machine with AVX2, with the
+/// 1.62 microseconds between 8192 and 65536 particles, more than the \f$ \log N \f$ of the
+/// walk alone (1.23 times): most of it in one step from 16384 to 32768 particles, where, we
+/// think, the walk outgrows the processor's caches.  (A run on a machine with AVX2, with the
 /// tree's earlier leaves of 12 and groups of 16, gave 2.13 and 3.06 microseconds: timings vary
 /// with the machine, and on a shared one by a fifth or more from one run to the next; only
 /// ratios taken within one run compare two methods.)
@@ -1075,8 +1076,8 @@ Cost step6_error_against_run_time(const app::Chapter& chapter, const Parameters&
 /// **Reading the cost slopes.**  The order says how fast a method converges; the cost slope
 /// says what a second of computing buys, which is the question of this step.  In the recorded
 /// run, from 1024 to 8192 particles, the slopes in \f$ L_1(\log_{10}\rho) \f$ are -0.18
-/// (standard), -0.14 (modified) and -0.26 (switch), and in \f$ L_1(v_r) \f$ -0.25, -0.14 and
-/// -0.31: the switch gains the most accuracy per doubling of the time in both, the modified
+/// (standard), -0.12 (modified) and -0.24 (switch), and in \f$ L_1(v_r) \f$ -0.24, -0.13 and
+/// -0.28: the switch gains the most accuracy per doubling of the time in both, the modified
 /// viscosity the least -- though in velocity it starts far lower, which is why it is still
 /// ahead at these resolutions (\ref ch06_findings "the findings").  The energy error falls
 /// faster than \f$ \Delta x \f$, at orders 1.65, 2.38 and 1.77.
@@ -1112,7 +1113,7 @@ struct Extreme {
 /// particle: the Evrard sphere has \f$ M(r) = r^2 \f$, so the radius holding half a particle's
 /// mass is \f$ r = (2N)^{-1/2} \f$, where \f$ \rho = 1/(2\pi r) \f$ -- 20.4 at 8192 particles.
 /// The standard run's centre is compressed fifteen times beyond that (302.4), the modified
-/// run's ninety times (1797.2).  Every least step in the recorded run is set by the Courant
+/// run's nearly ninety times (1797.2).  Every least step in the recorded run is set by the Courant
 /// condition of eq 7: the denser centre costs steps through its smaller h.
 ///
 /// The last column asks what individual time steps would save.  After every step each
@@ -1430,7 +1431,7 @@ Extreme step7_extreme(const Parameters& par, const Collapse& c) {
 /// energy with a smoothing length tied to the density; a neighbour search as fast in a
 /// collapsed centre, where h spans a factor of fifty, as it is in a shock tube; and, for the
 /// individual time steps, the work every step still does for all particles -- the drift, the
-/// tree's build, the neighbour search's bookkeeping -- which makes an update 1.4 times dearer
+/// tree's build, the neighbour search's bookkeeping -- which makes an update 1.3 times dearer
 /// than with one step for all.  Not on that list: a local (Taylor) expansion of the tree's
 /// far field at each target of the walk, the fast multipole method's step.  Most multipoles a
 /// particle sums were accepted by a target above its group and are summed again by every
