@@ -278,6 +278,37 @@ TEST_CASE("the tree's force error against direct summation, uniform and 1/r sphe
   CHECK(ec.max <= 7e-3);
 }
 
+// Leaves and groups decide how the work is shared out -- how many particles a leaf holds, how
+// many share one walk -- not which nodes may be used: every accepted node passes the criterion
+// for every particle of its group.  So any sizes must meet the same targets, and the default
+// must match direct summation as well as the sizes it replaced (12 and 16).
+TEST_CASE("the tree's leaf and group sizes change its cost, not its accuracy", "[gravity]") {
+  const Reference& uniform = uniform_sphere();
+  std::printf("leaf and group sizes, uniform sphere, N = 10^4, theta 0.3, quadrupoles:\n");
+  std::printf("  %-30s %9s %9s %9s %9s %9s %7s %7s\n", "", "p50", "p90", "p99", "max", "max |a|>",
+              "pp", "pn");
+  struct Sizes {
+    int leaf, group;
+  };
+  double p99_default = 0, p99_before = 0;
+  for (const Sizes s :
+       {Sizes{1, 1}, Sizes{4, 8}, Sizes{12, 16}, Sizes{16, 32}, Sizes{32, 8}, Sizes{64, 256}}) {
+    sph::TreeGravity tree;
+    tree.leaf_size = s.leaf, tree.group_size = s.group;
+    const auto e = relative_errors(with_gravity(uniform.particles, tree), uniform.direct);
+    char label[64];
+    std::snprintf(label, sizeof label, "leaves %d, groups %d", s.leaf, s.group);
+    print(label, e, tree);
+    check_targets(e);
+    if (s.leaf == sph::TreeGravity::default_leaf_size &&
+        s.group == sph::TreeGravity::default_group_size)
+      p99_default = e.p99;
+    if (s.leaf == 12 && s.group == 16) p99_before = e.p99;
+  }
+  REQUIRE(p99_default > 0);
+  CHECK(p99_default <= 1.5 * p99_before);
+}
+
 TEST_CASE("the tree's relative criterion: a smaller largest error with fewer interactions",
           "[gravity]") {
   // GADGET-2's criterion bounds each node's error against the particle's last |a|: where the
