@@ -1407,8 +1407,9 @@ Extreme step7_extreme(const Parameters& par, const Collapse& c) {
 ///    times larger at almost the same cost.
 ///  - `--relative 0.001`: every run with the tree's relative criterion (Step 2); the energies
 ///    of Fig 5 hardly change, and the step at t = 0.8 takes 0.88 of the time (the bench,
-///    22000 particles, on a machine with AVX2) -- but at this chapter's 8192 particles the
-///    standard run to t = 1.6 took 0.995 of the time: there the near field, which the
+///    22000 particles, on a machine with AVX2; 0.82-0.90 in four runs on the machine of
+///    `output.txt`) -- but at this chapter's 8192 particles the standard run to t = 1.6 took
+///    0.92-1.01 of the time (three alternating pairs): there the near field, which the
 ///    criterion leaves as it is, is most of the tree's work.
 ///  - `--eta 0 --softening 0.01`: the modified viscosity without its collective term; its
 ///    energy is then conserved to about \f$ 10^{-3} \f$, and its kinetic energy still peaks
