@@ -1433,10 +1433,14 @@ Extreme step7_extreme(const Parameters& par, const Collapse& c) {
 /// methods of Flebbe et al. and Brookshaw, on static fields first.  What this chapter leaves
 /// open: the correction term of Price & Monaghan that would make the softened gravity conserve
 /// energy with a smoothing length tied to the density; a neighbour search as fast in a
-/// collapsed centre, where h spans a factor of fifty, as it is in a shock tube; and, for the
+/// collapsed centre, where h spans a factor of fifty, as it is in a shock tube; for the
 /// individual time steps, the work every step still does for all particles -- the drift, the
 /// tree's build, the neighbour search's bookkeeping -- which makes an update 1.3 times dearer
-/// than with one step for all.  Not on that list: a local (Taylor) expansion of the tree's
+/// than with one step for all; and a tree that sums a node within a particle's softening range
+/// as a multipole of that particle's softened kernel, as GADGET-2 does, where the node is small
+/// against that length -- after the bounce the gas thrown out has a 2h that reaches across the
+/// core, and nearly half the tree's pairs come from nodes opened only for that reason (the
+/// design page counts them).  Not on that list: a local (Taylor) expansion of the tree's
 /// far field at each target of the walk, the fast multipole method's step.  Most multipoles a
 /// particle sums were accepted by a target above its group and are summed again by every
 /// particle below it -- skipping their sums altogether saves 17 % of the tree's time at 8192
