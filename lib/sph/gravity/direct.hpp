@@ -10,7 +10,8 @@
 /// with the softening length equal to the smoothing length, so that gravity and pressure are
 /// resolved on the same scale (Bate & Burkert 1997; Price & Monaghan 2007).  The potential
 /// energy is \f$ E_\mathrm{pot} = \tfrac12\sum_i m_i\Phi_i \f$; the sum over j includes j = i,
-/// the self-energy \f$ -\tfrac75 Gm_i/h_i \f$ of a particle's own smeared-out mass, as in
+/// the self-potential \f$ -\tfrac75 Gm_i/h_i \f$ of a particle's own smeared-out mass (in
+/// \f$ E_\mathrm{pot} \f$: \f$ -\tfrac7{10}Gm_i^2/h_i \f$), as in
 /// Price & Monaghan (2007) -- it is what makes the energy of a smeared-out mass distribution
 /// right, and it changes as h does.
 ///

@@ -118,7 +118,7 @@
 /// threads.
 ///
 /// The potential \f$ \Phi_i \f$ includes, as in gravity/direct.hpp, a particle's own softened
-/// self-energy \f$ -\tfrac75 Gm_i/h_i \f$ (the particle is on its own group's particle list, at
+/// self-potential \f$ -\tfrac75 Gm_i/h_i \f$ (the particle is on its own group's particle list, at
 /// r = 0), so that the two modules' potential energies agree to the tree's error.
 
 #include "sph/active_set.hpp"
@@ -929,7 +929,7 @@ struct TreeGravity {
       softened[n_softened++] = static_cast<std::uint32_t>(k);
 
     // Second pass: the pairs within a kernel's support, in double precision through
-    // softening.hpp (at r = 0, itself: no force, and the self-energy -7/5 m/h).  The list is
+    // softening.hpp (at r = 0, itself: no force, and the self-potential -7/5 m/h).  The list is
     // never empty (the particle itself is on it); its pairs are copied side by side and padded
     // to whole blocks with copies of the first, which count with mass 0.
     const std::size_t blocks = (n_softened + W - 1) / W * W;
