@@ -122,6 +122,7 @@
 #include "sph/viscosity/selhammar_1997.hpp"
 
 #include <algorithm>
+#include <array>
 #include <cmath>
 #include <cstdio>
 #include <filesystem>
@@ -235,7 +236,7 @@ struct Parameters {
 };
 
 /// Each option has a range that the program checks before it runs.  The opening angle stops
-/// at 1.5 (above 1 a cube may already be taken whole when it is larger than its distance, and
+/// at 1.5 (above 1 a node may already be taken whole when it is larger than its distance, and
 /// above 0.6 the near field decides anyway, Step 2); the softening at 1, the radius of the
 /// sphere; the particle numbers before a run would take hours or more memory than a machine has.
 /// `--largest` starts at 2048 so that the series of Step 6 has at least two resolutions to fit an
@@ -414,24 +415,25 @@ DirectCheck step1_direct_summation(const Parameters& par) {
 /// which is stricter still.  The opening angles of different codes are therefore not the same
 /// number, and the way to compare them is by the errors they give.
 ///
-/// **Where it fails.**  The error of each multipole is relative to that cube's own pull.  Where
-/// the pulls of many cubes nearly cancel -- near the centre of a uniform sphere, or in any
+/// **Where it fails.**  The error of each multipole is relative to that node's own pull.  Where
+/// the pulls of many nodes nearly cancel -- near the centre of a uniform sphere, or in any
 /// nearly uniform medium -- the net force is small and its relative error large.  And the tree
-/// is not symmetric: particle i may see particle j's cube as a multipole while j opens i's, so
+/// is not symmetric: particle i may see particle j's node as a multipole while j opens i's, so
 /// the forces are not exactly equal and opposite, and momentum is conserved only to the
 /// accuracy of the forces.
 ///
-/// **A criterion relative to the particle's own pull.**  The opening angle bounds each cube's
-/// error against that cube's pull, whatever the particle's total: it is too strict for a
+/// **A criterion relative to the particle's own pull.**  The opening angle bounds each node's
+/// error against that node's pull, whatever the particle's total: it is too strict for a
 /// particle under a strong pull and too loose where the pulls cancel.  GADGET-2 (Springel 2005)
 /// bounds the error against the particle's acceleration instead, taken from its last
-/// evaluation: a cube of mass M and size \f$ r_\mathrm{max} \f$ at distance d is accepted where
+/// evaluation: a node of mass M and size \f$ r_\mathrm{max} \f$ at distance d is accepted where
 /// the first term its expansion leaves out is small against that acceleration,
 /// \f$ (GM/d^2)(r_\mathrm{max}/d)^3 \le \alpha|\mathbf a_i| \f$ for quadrupoles (the power
-/// is 2 for monopoles) -- and, as before, where none of its particles can be within the
-/// softening range.  `sph::TreeGravity::Criterion::relative` with \f$ \alpha \f$ =
-/// `relative_accuracy`; the first evaluation has no accelerations and opens by \f$ \theta
-/// \f$.  The table's last rows measure it after such a first evaluation.
+/// is 2 for monopoles; GADGET-2, which keeps monopoles, writes that form with the node's side in
+/// place of \f$ r_\mathrm{max} \f$, and the power 3 is ours) -- and, as before, where none of its
+/// particles can be within the softening range.  `sph::TreeGravity::Criterion::relative` with \f$
+/// \alpha \f$ = `relative_accuracy`; the first evaluation has no accelerations and opens by \f$
+/// \theta \f$.  The table's last rows measure it after such a first evaluation.
 ///
 /// We measure the tree against direct summation on the Evrard sphere at t = 0 with the
 /// smoothing lengths of the first step: the relative force error of every particle,
@@ -455,7 +457,7 @@ DirectCheck step1_direct_summation(const Parameters& par) {
 /// force is, the maximum how bad the worst one is, and the 99th percentile the worst that more
 /// than a handful of particles see.  It also keeps the relative error of the potential energy,
 /// the time relative to direct summation, the net force, and the number of interactions a
-/// particle had -- particle-particle pairs in the near field plus cubes taken as multipoles --
+/// particle had -- particle-particle pairs in the near field plus nodes taken as multipoles --
 /// which the tree counts as it walks (`sph::TreeGravity::statistics`).  The interactions
 /// measure the work without the noise of a clock.
 
@@ -564,11 +566,11 @@ TreeStudy step2_tree(const app::Chapter& chapter, const Parameters& par) {
 /// \f$ 7.50\times10^{-4} \f$, with 1579 interactions a particle; monopoles at the same angle and
 /// the same interaction count reach \f$ 2.81\times10^{-3} \f$ and \f$ 6.32\times10^{-3} \f$,
 /// within both targets but with little room under the stricter maximum
-/// (\f$ 7\times10^{-3} \f$).  The quadrupoles cost about as much time (0.059 of direct
-/// summation's against 0.057) for a 99th percentile nine times smaller.  Above
+/// (\f$ 7\times10^{-3} \f$).  The quadrupoles cost a tenth more time (0.058 of direct
+/// summation's against 0.053) for a 99th percentile nine times smaller.  Above
 /// \f$ \theta = 0.6 \f$ the interactions stay at 1189-1191 a particle and the maximum error at
 /// \f$ 6.84\times10^{-3} \f$ (quadrupoles) and \f$ 2.79\times10^{-2} \f$ (monopoles): there
-/// almost every cube that the angle would accept is opened anyway, because it may hold a particle
+/// almost every node that the angle would accept is opened anyway, because it may hold a particle
 /// within the softening range, and what remains is the near field, summed pair by pair.  That near
 /// field is why the cost falls so little with the angle -- from 2515 interactions at 0.2 to 1579 at
 /// 0.3 and 1215 at 0.5 -- and why an SPH code can afford a smaller angle than a pure N-body code.
@@ -586,20 +588,20 @@ TreeStudy step2_tree(const app::Chapter& chapter, const Parameters& par) {
 /// the tests, whose centre holds many particles with small forces -- the same \f$ \alpha \f$
 /// gives a largest error two fifths of the angle's, and on the collapsed sphere at t = 0.8 (22000
 /// particles, a development run) it takes 44 % fewer multipoles for a smaller largest error.
-/// In the right panel of the recorded run its points lie on the quadrupoles' line or up to
-/// twice above it: at \f$ \alpha = 10^{-3} \f$ (0.055 of direct summation's time) on it, at
-/// \f$ 2\times10^{-3} \f$ to \f$ 8\times10^{-3} \f$ (0.053-0.056) above it.  But an
-/// evaluation takes ten milliseconds here and such timings vary from run to run: the monopole
-/// rows from 0.7 on, the same 1189 interactions and the same errors, took 0.047-0.050 (in a run
-/// on a machine with AVX2 the relative criterion's points lay below and left of the line).
-/// Counted in interactions, which carry no such noise, every relative row lies on the
-/// quadrupoles' line (within 2 %) or below it: 1365 interactions give a 99th percentile of
-/// \f$ 4.79\times10^{-4} \f$ where the angle's line, between 0.3 and 0.4, gives about
-/// \f$ 5\times10^{-4} \f$.
-/// (Its rows are measured with the accelerations of earlier evaluations at the
+/// In the right panel of the recorded run its points lie on the curve that the quadrupoles'
+/// points trace, or above it, by up to 1.7 times: at \f$ \alpha \le 10^{-3} \f$ (0.054-0.062 of
+/// direct summation's time) on it or a little above, at \f$ 2\times10^{-3} \f$ to \f$
+/// 8\times10^{-3} \f$ (0.050-0.051) above it -- at 1276 interactions it takes the time of the
+/// angle's 1313.  For the time it takes, the relative criterion buys nothing here: each of its
+/// tests costs more (a square root, and the particles' accelerations to gather), and on this sphere
+/// it has few cancelling pulls to exploit.  (In a run on a machine with AVX2 its points lay below
+/// and left of the line; an evaluation takes ten milliseconds, and such timings move from run to
+/// run.)  Counted in interactions, which carry no such noise, every relative row lies on the
+/// quadrupoles' line (within 2 %) or below it: 1365 interactions give a 99th percentile of \f$
+/// 4.79\times10^{-4} \f$ where the angle's line, between 0.3 and 0.4, gives about \f$
+/// 5\times10^{-4} \f$.  (Its rows are measured with the accelerations of earlier evaluations at the
 /// same positions, the best case; in a run they are a step old.)  The chapter's runs keep the
-/// geometric criterion, the one the recorded numbers were made with; `--relative` switches
-/// them.
+/// geometric criterion, the one the recorded numbers were made with; `--relative` switches them.
 
 /// \subsection ch06_tree_cost The cost against N
 ///
@@ -612,11 +614,11 @@ TreeStudy step2_tree(const app::Chapter& chapter, const Parameters& par) {
 /// stays flat if the cost grows as \f$ N \f$ and grows slowly if it grows as
 /// \f$ N\log N \f$.
 ///
-/// In the recorded run direct summation's time grows fourfold at each doubling of N (0.1618 s
-/// at 8192 particles, 0.6459 s at 16384, 2.6338 s at 32768), the tree's about twofold
-/// (0.0094 s, 0.0208 s, 0.0507 s, then 0.1060 s at 65536), so the tree's advantage grows with
-/// N: 17.2 times at 8192 particles, 52.0 at 32768.  Its time per particle rises from 1.15 to
-/// 1.62 microseconds between 8192 and 65536 particles, more than the \f$ \log N \f$ of the
+/// In the recorded run direct summation's time grows about fourfold at each doubling of N
+/// (0.1620 s at 8192 particles, 0.7103 s at 16384, 2.6111 s at 32768), the tree's about twofold
+/// (0.0095 s, 0.0208 s, 0.0473 s, then 0.1021 s at 65536), so the tree's advantage grows with
+/// N: 17.1 times at 8192 particles, 55.2 at 32768.  Its time per particle rises from 1.16 to
+/// 1.56 microseconds between 8192 and 65536 particles, more than the \f$ \log N \f$ of the
 /// walk alone (1.23 times): most of it in one step from 16384 to 32768 particles, where, we
 /// think, the walk outgrows the processor's caches.  (A run on a machine with AVX2, with the
 /// tree's earlier leaves of 12 and groups of 16, gave 2.13 and 3.06 microseconds: timings vary
@@ -845,10 +847,11 @@ struct Collapse {
 /// deepest potential energy, each with its time, for the 4000-shell reference, our 2000-shell
 /// Lagrangian code and the six SPH runs; then, for the SPH runs, the steps, the wall time,
 /// the relative change of the total energy at the end and the momentum drift.  A second table
-/// sets the two runs with individual time steps against their runs with one step for all:
-/// their particle updates, how many times fewer those are, and how many times less wall time
-/// they took.  The times say
-/// as much as the heights.  In the recorded run the kinetic energy of every run peaks close to
+/// gives each run's largest change of the total energy on the way and when it came (the end
+/// value hides how much was lost at the bounce and won back).  A third sets the two runs with
+/// individual time steps against their runs with one step for all: their particle updates, how
+/// many times fewer those are, and how many times less wall time they took.  The times say as
+/// much as the heights.  In the recorded run the kinetic energy of every run peaks close to
 /// the reference's t = 0.875 (standard 0.870, switch 0.867, modified 0.924), but the thermal
 /// energy does not: the standard viscosity and the switch reach their largest thermal energy
 /// at t = 1.110 and 1.097, after the reference's 1.065, and the modified viscosity at 1.036,
@@ -873,11 +876,26 @@ void print_energy_table(const Collapse& c, const Parameters& par) {
   };
   row("4000-shell reference", r, 0, 0, 0, 0);
   row("ours, 1D, " + std::to_string(par.quick ? 500 : 2000) + " shells", own, 0, 0, 0, 0);
-  for (const app::EvrardRun* run :
-       {&c.runs[0], &c.runs[1], &c.runs[2], &c.fixed, &c.own_steps[0], &c.own_steps[1]}) {
-    row(run == &c.fixed ? "std., fixed softening" : run->name, app::extremes(*run), run->steps,
-        run->seconds, run->energy_error, run->momentum_drift);
+  const std::array<const app::EvrardRun*, 6> runs = {&c.runs[0], &c.runs[1],      &c.runs[2],
+                                                     &c.fixed,   &c.own_steps[0], &c.own_steps[1]};
+  const auto name = [&c](const app::EvrardRun* run) {
+    return run == &c.fixed ? std::string("std., fixed softening") : run->name;
+  };
+  for (const app::EvrardRun* run : runs) {
+    row(name(run), app::extremes(*run), run->steps, run->seconds, run->energy_error,
+        run->momentum_drift);
     if (!run->stopped.empty()) std::printf("      stopped: %s\n", run->stopped.c_str());
+  }
+  // The largest change of the total energy on the way, not only at the end.
+  std::printf("  the total energy's largest change on the way:\n");
+  std::printf("    %-21s %9s %7s\n", "", "|dE/E|", "at t");
+  for (const app::EvrardRun* run : runs) {
+    double largest = 0, t_largest = 0;
+    for (std::size_t k = 0; k < run->t.size(); ++k) {
+      const double de = std::abs(app::total_at(*run, k) / app::total_at(*run, 0) - 1);
+      if (de > largest) largest = de, t_largest = run->t[k];
+    }
+    std::printf("    %-21s %9.2e %7.3f\n", name(run).c_str(), largest, t_largest);
   }
   std::printf("  individual time steps against one step for all:\n");
   std::printf("    %-10s %16s %12s %12s\n", "", "particle updates", "fewer by", "faster by");
@@ -933,9 +951,12 @@ Collapse step4_energies(const app::Chapter& chapter, const Parameters& par,
 /// bins between r = 0.01 and 1 and measure the shock on the binned radial velocity: its
 /// position (where \f$ v_r \f$ has risen halfway from the infall's most negative value to zero)
 /// and its width (the distance over which it rises from 80 % to 20 % of that value), both also
-/// for the reference.  The same bins give the errors of Step 6: \f$ L_1 \f$ of
-/// \f$ \log_{10}\rho \f$ and of \f$ v_r \f$ over the bins, weighted by their mass, against the
-/// reference at each bin's mean radius.
+/// for the reference: on its own 8000 cells, and with its cells put into the same bins, each
+/// weighing its shell's mass \f$ \rho r^2 \f$ as a particle weighs its own
+/// (`app::binned_reference`).  A jump of no width at all comes out of the bins as wide as a bin or
+/// so: that second width is the narrowest the bins can show.  The same bins give the errors of
+/// Step 6: \f$ L_1 \f$ of \f$ \log_{10}\rho \f$ and of \f$ v_r \f$ over the bins, weighted by their
+/// mass, against the reference at each bin's mean radius.
 ///
 /// What to look for.  Far outside the shock every viscosity follows the reference; nearer it the
 /// standard viscosity has already braked the infall.  The shock is spread over a few smoothing
@@ -952,8 +973,8 @@ Collapse step4_energies(const app::Chapter& chapter, const Parameters& par,
 /// the two errors and the wall time to t = 0.8.
 
 struct Profiles {
-  app::Shock reference;
-  std::vector<app::Shock> shocks;  // standard, modified, switch
+  app::Shock reference, reference_binned;  // on the reference's cells, and on the particles' bins
+  std::vector<app::Shock> shocks;          // standard, modified, switch
   std::vector<app::ProfileErrors> errors;
   double own_vs_reference = 0;  // L1(log rho) of our 1D code against the finite-volume profile
 };
@@ -985,6 +1006,8 @@ Profiles step5_profiles(const app::Chapter& chapter, const Collapse& c) {
   Profiles result;
   const app::EvrardReference& ref = c.reference;
   result.reference = app::find_shock(ref.r, ref.v);
+  const app::RadialProfile binned = app::binned_reference(ref.r, ref.rho, ref.v);
+  result.reference_binned = app::find_shock(binned.bin_r, binned.bin_v);
   result.own_vs_reference = own_code_against_finite_volume(ref, result.reference.position);
   std::printf(
       "  our 1D Lagrangian code against the finite-volume profile: mean |d log10 rho|\n"
@@ -994,6 +1017,8 @@ Profiles step5_profiles(const app::Chapter& chapter, const Collapse& c) {
               "wall s");
   std::printf("    %-10s %9.4f %9.4f\n", "reference", result.reference.position,
               result.reference.width);
+  std::printf("    %-10s %9.4f %9.4f  (its cells in the particles' bins)\n", "  binned",
+              result.reference_binned.position, result.reference_binned.width);
   for (const app::EvrardRun& run : c.runs) {
     const app::RadialProfile prof = app::radial_profile(run.at_08, run.centre_08);
     result.shocks.push_back(app::find_shock(prof.bin_r, prof.bin_v));
@@ -1022,8 +1047,8 @@ Profiles step5_profiles(const app::Chapter& chapter, const Collapse& c) {
 /// relative change of the total energy, against the whole run's wall time ("per CPU second"
 /// means here per second of wall time on the machine's two threads, what a user waits for).
 /// Below 4096 particles a step runs on one thread (two would not be faster: starting them costs
-/// more than the work), so the wall time grows 2.8-3.3 times from 1024 to 2048 particles, 1.7
-/// times from 2048 to 4096, where the second thread starts, and 2.5-3.1 times from 4096 to
+/// more than the work), so the wall time grows 2.8-3.2 times from 1024 to 2048 particles,
+/// 1.8-2.1 times from 2048 to 4096, where the second thread starts, and 2.4-2.9 times from 4096 to
 /// 8192: the cost slopes below are those of the time a user waits, threads included.  The runs at
 /// Fig 5's particle number are Step 4's, timed to t = 0.8.  The figure is
 /// `evrard_error_vs_time.png`.
@@ -1108,8 +1133,8 @@ Cost step6_error_against_run_time(const app::Chapter& chapter, const Parameters&
 /// **Reading the cost slopes.**  The order says how fast a method converges; the cost slope
 /// says what a second of computing buys, which is the question of this step.  In the recorded
 /// run, from 1024 to 8192 particles, the slopes in \f$ L_1(\log_{10}\rho) \f$ are -0.18
-/// (standard), -0.12 (modified) and -0.24 (switch), and in \f$ L_1(v_r) \f$ -0.24, -0.13 and
-/// -0.28: the switch gains the most accuracy per doubling of the time in both, the modified
+/// (standard), -0.12 (modified) and -0.25 (switch), and in \f$ L_1(v_r) \f$ -0.25, -0.12 and
+/// -0.30: the switch gains the most accuracy per doubling of the time in both, the modified
 /// viscosity the least -- though in velocity it starts far lower, which is why it is still
 /// ahead at these resolutions (\ref ch06_findings "the findings").  The energy error falls
 /// faster than \f$ \Delta x \f$, at orders 1.65, 2.38 and 1.77.
@@ -1298,7 +1323,7 @@ Extreme step7_extreme(const Parameters& par, const Collapse& c) {
 /// \f$ 7.5\times10^{-4} \f$ (both targets met with a factor 9 to spare); monopoles at
 /// the same angle: \f$ 2.8\times10^{-3} \f$ and \f$ 6.3\times10^{-3} \f$.  Its net force is
 /// \f$ 9\times10^{-7} \f$ of the forces' scale (direct summation: round-off).  One evaluation
-/// costs 1.15 microseconds per particle at 8192 particles and 1.62 at 65536 in the recorded run
+/// costs 1.16 microseconds per particle at 8192 particles and 1.56 at 65536 in the recorded run
 /// (two threads of a shared machine; the benchmark program measures it on a quiet one): the
 /// \f$ N\log N \f$ line of `tree_cost.png`.  Why \f$ \theta = 0.3 \f$ and not the 0.5-0.7 of
 /// many codes (whose angles measure nodes differently, Step 2): on this step's Evrard sphere
@@ -1341,33 +1366,34 @@ Extreme step7_extreme(const Parameters& par, const Collapse& c) {
 /// changes by 1.4 % by t = 3 with the softening equal to h
 /// (standard and switch 0.9 %), most of it the softening's error, which is largest in the
 /// modified viscosity's denser core: at the bounce, where the gas is most compressed, the
-/// change is 3.1 % (standard 1.7 %, Fig 5 d), and half of it comes back as the core
-/// re-expands -- the work that a varying softening leaves out is done as the smoothing lengths
-/// shrink and partly undone as they grow again.  The collective term conserves
-/// \f$ \Delta T + \Delta U = 0 \f$ in each kick (chapter 5), but it changes the velocities at
-/// the kicks, and the work that the pressure forces and gravity do on those changes was left
-/// unpaid -- of first order in the step, and large, because the term relaxes a particle's
-/// velocity to its neighbourhood's within one step (its rate k, chapter 5's, times the step:
-/// \f$ k\,\delta t \approx 3 \f$-6 with eq 7's
-/// step).  The leapfrog now pays it (chapter 5 says how).  On 2048-particle runs to t = 1.1 with
-/// a fixed softening length, which isolates the viscosity, the modified viscosity's energy
-/// changes by \f$ 7.7\times10^{-4} \f$ with the payment and by 4.0 % without it
-/// (`sph::Leapfrog::work_of_term_kicks = false`), against \f$ 2\times10^{-5} \f$ for the
-/// standard viscosity; and the kinetic energy peaks at 0.59 either way, so the payment is not
-/// why the collapse goes too deep.  Since the collective term is not a pair force, momentum
-/// drifts by more than a quarter of \f$ \sum m|\mathbf v| \f$.  And after the bounce the
-/// modified run keeps a kinetic energy near 0.4 to t = 3 (Fig 5 b), twice the reference's
-/// 0.21; where that energy sits -- a ringing core, gas thrown out, or the bulk motion its
-/// momentum drift gives the sphere -- this chapter does not measure.
+/// change is \f$ 3.14\times10^{-2} \f$ at t = 1.023 (standard \f$ 1.66\times10^{-2} \f$ at 1.074,
+/// switch \f$ 1.73\times10^{-2} \f$; Step 4's second table, Fig 5 d), and about half of it comes
+/// back as the core re-expands -- the work that a varying softening leaves out is done as the
+/// smoothing lengths shrink and partly undone as they grow again.  The collective term conserves
+/// \f$ \Delta T + \Delta U = 0 \f$ in each kick (chapter 5), but it changes the velocities at the
+/// kicks, and the work that the pressure forces and gravity do on those changes was left unpaid --
+/// of first order in the step, and large, because the term relaxes a particle's velocity to its
+/// neighbourhood's within one step (its rate k, chapter 5's, times the step: \f$ k\,\delta t
+/// \approx 3 \f$-6 with eq 7's step).  The leapfrog now pays it (chapter 5 says how).  On
+/// 2048-particle runs to t = 1.1 with a fixed softening length, which isolates the viscosity, the
+/// modified viscosity's energy changes by \f$ 7.7\times10^{-4} \f$ with the payment and by 4.0 %
+/// without it (`sph::Leapfrog::work_of_term_kicks = false`), against \f$ 2\times10^{-5} \f$ for the
+/// standard viscosity; and the kinetic energy peaks at 0.59 either way, so the payment is not why
+/// the collapse goes too deep.  Since the collective term is not a pair force, momentum drifts by
+/// more than a quarter of \f$ \sum m|\mathbf v| \f$.  And after the bounce the modified run keeps a
+/// kinetic energy near 0.4 to t = 3 (Fig 5 b), twice the reference's 0.21; where that energy sits
+/// -- a ringing core, gas thrown out, or the bulk motion its momentum drift gives the sphere --
+/// this chapter does not measure.
 ///
 /// **Figs 6-7** (`fig6_standard.png`, `fig7_modified.png`).  Selhammar: "the main difference
 /// between these models are the sharper gradients with modified artificial viscosity".
 /// **Reproduced**: the shock, measured on the binned radial velocity from 80 % to 20 % of the
 /// infall, is 0.014 wide with the modified viscosity, 0.059 with the standard one and 0.038
-/// with the switch (0.0003 in the 8000-cell reference, measured on its own cells).  The
-/// modified viscosity's width is about two of the 60 logarithmic bins (0.007 wide at
-/// r = 0.09, 0.011 at 0.14) and less than a smoothing length there, so "four times thinner" is
-/// as far as the bins resolve it: a lower bound on the ratio, not a resolved shock.  Also as he
+/// with the switch (0.0003 in the 8000-cell reference on its own cells, 0.0081 with its cells put
+/// into the particles' bins: the narrowest width the bins can show).  The modified viscosity's
+/// width is less than twice that floor (the bins are 0.007 wide at r = 0.09, 0.011 at 0.14) and
+/// less than a smoothing length there, the standard one's seven times it: "four times thinner"
+/// is as far as the bins resolve it, a lower bound on the ratio.  Also as he
 /// says, "the infalling gas is allowed to move inwards without deceleration until it meets the
 /// shock front": the modified viscosity's infall follows the reference to -1.6, where the standard
 /// viscosity's has been braked to -1.1.  **Not reproduced** is that this makes the profile more
@@ -1377,7 +1403,7 @@ Extreme step7_extreme(const Parameters& par, const Collapse& c) {
 ///
 /// **Error against run time** (`evrard_error_vs_time.png`, t = 0.8).  At 8192 particles
 /// \f$ L_1(\log_{10}\rho) \f$ is 0.100 (standard), 0.084 (modified), 0.081 (switch) and
-/// \f$ L_1(v_r) \f$ 0.164, 0.085, 0.116, in 3.7, 7.6 and 4.9 s (the run in `output.txt`, two
+/// \f$ L_1(v_r) \f$ 0.164, 0.085, 0.116, in 3.4, 9.0 and 4.1 s (the run in `output.txt`, two
 /// threads of a machine with AVX-512).  From 1024 to 8192 particles
 /// the modified viscosity converges at order 0.43 in density, the standard one at 0.71 and the
 /// switch at 0.95.  With `--largest 65536` (about 15 minutes in all) the series goes on to
@@ -1406,11 +1432,11 @@ Extreme step7_extreme(const Parameters& par, const Collapse& c) {
 /// usual size (maximum \f$ 5\times10^{-4} \f$) and feels \f$ GM/r^2 \f$ to
 /// \f$ 3\times10^{-7} \f$.
 ///
-/// **What it costs.**  At 8192 particles the standard run to t = 3 takes 38 s in the recorded
+/// **What it costs.**  At 8192 particles the standard run to t = 3 takes 39 s in the recorded
 /// run (two threads of an AMD EPYC with AVX-512; 1368 steps), the modified viscosity's 114 s:
 /// its denser centre needs 3033 steps, each 1.4 times the standard's cost (the collective
 /// term's sums).  With individual time steps (Step 4's last two runs) the same collapses take
-/// 26 s and 67 s: 1.48 and 1.70 times faster, for 1.87 and 2.27 times fewer particle updates,
+/// 29 s and 70 s: 1.32 and 1.63 times faster, for 1.87 and 2.27 times fewer particle updates,
 /// with energy extremes within 0.2 % (standard) and 1.2 % (modified) of the runs with one step
 /// for all, and a smaller energy error (\f$ 5.9\times10^{-3} \f$ against
 /// \f$ 8.8\times10^{-3} \f$; \f$ 3.5\times10^{-3} \f$ against
@@ -1421,11 +1447,11 @@ Extreme step7_extreme(const Parameters& par, const Collapse& c) {
 /// the runs with one step for all have them 0.019 and 0.004 apart).  The target for the
 /// 8192-particle collapse, 60 s, is **met** by the standard viscosity, with one step for all and
 /// with individual steps (on a machine with AVX2 the same runs took 70 and 45 s: met with
-/// individual steps only), and by the switch (37 s); the modified viscosity misses it both ways
-/// (114 s and 67 s).  The gain is less than the updates saved: there
+/// individual steps only), and by the switch (33 s); the modified viscosity misses it both ways
+/// (114 s and 70 s).  The gain is less than the updates saved: there
 /// are more steps (1982 against 1368: the power-of-two levels round every step down, by 28 % on
 /// average), and each step still drifts every particle, builds the tree and keeps the neighbour
-/// search's bookkeeping for all of them; an update costs 1.3 times one with one step for all
+/// search's bookkeeping for all of them; an update costs 1.4 times one with one step for all
 /// (the design page says where the time goes).  The whole chapter takes 5.9 minutes (10 on the
 /// machine with AVX2), against a target of 3: **not met**; Figs 5-7 and the claims use one step
 /// for all, as the paper does, and the modified viscosity's run alone takes nearly two of the

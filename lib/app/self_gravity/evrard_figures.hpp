@@ -138,7 +138,7 @@ inline void save_evrard_profile_figure(const std::string& path, const EvrardRun&
                 .alpha = 0.6});
     ax.line(ref.r, *reference_values[panel],
             {.label = "1D reference", .color = plot::red, .width = 2.2});
-    ax.legend(panel == 0 ? plot::Corner::lower_right : plot::Corner::upper_right);
+    ax.legend(plot::Corner::upper_right);
   }
   figure.save_png(path);
 }

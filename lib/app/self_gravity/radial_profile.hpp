@@ -2,7 +2,8 @@
 /// \file
 /// \brief Radial profiles of a three-dimensional particle set about a centre: every particle's
 /// radius, radial velocity, density and pressure, and their averages in logarithmic bins
-/// (app::radial_profile); the shock on a binned velocity profile (app::find_shock); the binned
+/// (app::radial_profile), and a one-dimensional reference put into the same bins
+/// (app::binned_reference); the shock on a binned velocity profile (app::find_shock); the binned
 /// profile's errors against a one-dimensional reference (app::profile_errors).  The radius of a
 /// mass shell is app::radius_holding (particle_measures.hpp).
 ///
@@ -32,13 +33,43 @@ struct RadialProfile {
   std::vector<double> bin_r, bin_v, bin_log_rho, bin_weight;
 };
 
+/// The logarithmic bin of radius \p r among \p bins between \p r_min and \p r_max (which
+/// \p r must lie within).
+inline int radial_bin(double r, int bins, double r_min, double r_max) {
+  return std::min(bins - 1, static_cast<int>(bins * std::log(r / r_min) / std::log(r_max / r_min)));
+}
+
+namespace radial_profile_detail {
+
+/// Weighted sums per bin of radius, radial velocity and \f$ \log_{10}\rho \f$, and the
+/// binned means they give.
+struct BinSums {
+  std::vector<double> r, v, log_rho, weight;
+  double total = 0;
+  explicit BinSums(int bins) : r(bins), v(bins), log_rho(bins), weight(bins) {}
+  void add(int b, double w, double radius, double velocity, double density) {
+    r[b] += w * radius, v[b] += w * velocity, log_rho[b] += w * std::log10(density);
+    weight[b] += w, total += w;
+  }
+  void means_into(RadialProfile& prof) const {
+    for (std::size_t b = 0; b < r.size(); ++b) {
+      if (weight[b] == 0) continue;
+      prof.bin_r.push_back(r[b] / weight[b]);
+      prof.bin_v.push_back(v[b] / weight[b]);
+      prof.bin_log_rho.push_back(log_rho[b] / weight[b]);
+      prof.bin_weight.push_back(weight[b] / total);
+    }
+  }
+};
+
+}  // namespace radial_profile_detail
+
 /// The radial profile of the particles \p p about \p centre, with \p bins logarithmic bins
 /// between \p r_min and \p r_max; the radial velocity is \f$ \mathbf v\cdot\hat{\mathbf r} \f$.
 inline RadialProfile radial_profile(const sph::Particles<3>& p, const sph::Vec<3>& centre,
                                     int bins = 60, double r_min = 0.01, double r_max = 1.0) {
   RadialProfile prof;
-  std::vector<double> sum_r(bins), sum_v(bins), sum_lr(bins), count(bins);
-  double inside = 0;
+  radial_profile_detail::BinSums sums(bins);
   for (std::size_t i = 0; i < p.size(); ++i) {
     const sph::Vec<3> d = p.position[i] - centre;
     const double r = d.norm();
@@ -48,21 +79,26 @@ inline RadialProfile radial_profile(const sph::Particles<3>& p, const sph::Vec<3
     prof.rho.push_back(p.density[i]);
     prof.pressure.push_back(p.pressure[i]);
     if (r < r_min || r >= r_max) continue;
-    const int b =
-        std::min(bins - 1, static_cast<int>(bins * std::log(r / r_min) / std::log(r_max / r_min)));
-    sum_r[b] += r;
-    sum_v[b] += v;
-    sum_lr[b] += std::log10(p.density[i]);
-    count[b] += 1;
-    inside += 1;
+    sums.add(radial_bin(r, bins, r_min, r_max), 1.0, r, v, p.density[i]);
   }
-  for (int b = 0; b < bins; ++b) {
-    if (count[b] == 0) continue;
-    prof.bin_r.push_back(sum_r[b] / count[b]);
-    prof.bin_v.push_back(sum_v[b] / count[b]);
-    prof.bin_log_rho.push_back(sum_lr[b] / count[b]);
-    prof.bin_weight.push_back(count[b] / inside);
+  sums.means_into(prof);
+  return prof;
+}
+
+/// A 1D reference profile \p r -> (\p rho, \p v) on an evenly spaced grid, put into the bins
+/// of radial_profile(): each cell weighs its shell's mass, \f$ \rho r^2 \f$, as each particle
+/// weighs its own mass there, so that a quantity measured on the bins (a shock's width) can be
+/// compared with the particles' as the bins see it.  Only the binned fields are filled.
+inline RadialProfile binned_reference(const std::vector<double>& r, const std::vector<double>& rho,
+                                      const std::vector<double>& v, int bins = 60,
+                                      double r_min = 0.01, double r_max = 1.0) {
+  RadialProfile prof;
+  radial_profile_detail::BinSums sums(bins);
+  for (std::size_t k = 0; k < r.size(); ++k) {
+    if (r[k] < r_min || r[k] >= r_max) continue;
+    sums.add(radial_bin(r[k], bins, r_min, r_max), rho[k] * r[k] * r[k], r[k], v[k], rho[k]);
   }
+  sums.means_into(prof);
   return prof;
 }
 
