@@ -411,9 +411,10 @@ DirectCheck step1_direct_summation(const Parameters& par) {
 /// the corner of a large, mostly empty box cannot fool.  For a full cube \f$ r_\mathrm{max} \f$
 /// is up to 0.87 of the side, so our \f$ \theta \f$ is stricter than a side-based one of the
 /// same value; and neighbouring particles walk the tree together, a node being accepted for all
-/// of them only where the nearest of them would accept it (`sph::TreeGravity`'s file comment),
-/// which is stricter still.  The opening angles of different codes are therefore not the same
-/// number, and the way to compare them is by the errors they give.
+/// of them only where a particle at the nearest point of the sphere that holds them would accept
+/// it (`sph::TreeGravity`'s file comment), which is stricter still.  The opening angles of
+/// different codes are therefore not the same number, and the way to compare them is by the errors
+/// they give.
 ///
 /// **Where it fails.**  The error of each multipole is relative to that node's own pull.  Where
 /// the pulls of many nodes nearly cancel -- near the centre of a uniform sphere, or in any
