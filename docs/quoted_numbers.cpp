@@ -3,8 +3,9 @@
 // A chapter's text (the `///` lines of its program and its results.md) quotes what its program
 // printed: errors, energies, step counts.  When the program changes, those numbers go stale
 // unless something compares them.  This tool does, for the numbers that can only have come from
-// a run: a number in scientific notation (`1.234e-3`, or `1.234\cdot 10^{-3}` in a formula) and
-// a count of steps (`1393 steps`).  Such a number passes if the program's recorded output
+// a run: a number in scientific notation (`1.234e-3`, or `1.234\cdot 10^{-3}` or
+// `1.234\times10^{-3}` in a formula) and a count of steps (`1393 steps`).  Such a number
+// passes if the program's recorded output
 // (figures/<chapter>/output.txt, written by the figures command) or the program's own code
 // (where numbers quoted from other codes live) holds a number that rounds to it, to the digits
 // the text gives.
@@ -93,7 +94,7 @@ struct Quoted {
 std::vector<Quoted> quoted_numbers(const std::string& text) {
   std::vector<Quoted> found;
   static const std::regex scientific(
-      R"((^|[^\w.])(\d+)\.(\d+)\s*(?:[eE]([-+]?\d+)|\\cdot\s*10\^\{?([-+]?\d+)\}?))");
+      R"((^|[^\w.])(\d+)\.(\d+)\s*(?:[eE]([-+]?\d+)|\\(?:cdot|times)\s*10\^\{?([-+]?\d+)\}?))");
   for (std::sregex_iterator it(text.begin(), text.end(), scientific), end; it != end; ++it) {
     const std::smatch& m = *it;
     const int exponent = std::stoi(m[4].matched ? m[4].str() : m[5].str());
