@@ -62,7 +62,7 @@
 /// (more than a quarter of the momentum scale).  Its energy is kept only because the leapfrog
 /// pays the work done on the velocities the collective term changes at the kicks (chapter 5); a
 /// leapfrog that does not loses 6 % of it by t = 3.  For the wall time spent, the modern switch
-/// is the most accurate in density from about 2 s of run time on (and its error falls fastest
+/// is the most accurate in density from about 1.5 s of run time on (and its error falls fastest
 /// with time), the modified viscosity in velocity at every resolution of the series (1024 to
 /// 8192 particles).  Softening gravity with the smoothing length costs 1 % of the energy by
 /// t = 3, and up to 3 % at the bounce; a fixed softening length conserves it to
@@ -105,6 +105,7 @@
 #include "app/self_gravity/gravity_alone.hpp"
 #include "app/self_gravity/radial_profile.hpp"
 #include "app/self_gravity/tree_figures.hpp"
+#include "app/self_gravity/unbound_gas.hpp"
 #include "app/text.hpp"
 #include "plot/figure.hpp"
 #include "sph/convergence.hpp"
@@ -591,14 +592,14 @@ TreeStudy step2_tree(const app::Chapter& chapter, const Parameters& par) {
   return study;
 }
 
-/// **Reading the accuracy table.**  On 8192 particles direct summation takes 0.164 s an
+/// **Reading the accuracy table.**  On 8192 particles direct summation takes 0.162 s an
 /// evaluation.  The quadrupole tree at the default \f$ \theta = 0.3 \f$ has a median error of
 /// \f$ 7.34\times10^{-5} \f$, a 99th percentile of \f$ 3.18\times10^{-4} \f$ and a maximum of
 /// \f$ 7.50\times10^{-4} \f$, with 1579 interactions a particle; monopoles at the same angle and
 /// the same interaction count reach \f$ 2.81\times10^{-3} \f$ and \f$ 6.32\times10^{-3} \f$,
 /// within both targets but with little room under the stricter maximum
 /// (\f$ 7\times10^{-3} \f$).  The quadrupoles cost a little more time (0.064 of direct
-/// summation's against 0.060) for a 99th percentile nine times smaller.  Above
+/// summation's against 0.059) for a 99th percentile nine times smaller.  Above
 /// \f$ \theta = 0.6 \f$ the interactions stay at 1189-1191 a particle and the maximum error at
 /// \f$ 6.84\times10^{-3} \f$ (quadrupoles) and \f$ 2.79\times10^{-2} \f$ (monopoles): there
 /// almost every node that the angle would accept is opened anyway, because it may hold a particle
@@ -620,7 +621,7 @@ TreeStudy step2_tree(const app::Chapter& chapter, const Parameters& par) {
 /// gives a largest error two fifths of the angle's, and on the collapsed sphere at t = 0.8 (22000
 /// particles, a development run) it takes 44 % fewer multipoles for a smaller largest error.
 /// In the right panel of the recorded run its points lie on the curve that the quadrupoles'
-/// points trace, or above it, by up to 1.4 times: at \f$ \alpha \le 10^{-3} \f$ (0.060-0.068 of
+/// points trace, or above it, by up to 1.4 times: at \f$ \alpha \le 10^{-3} \f$ (0.061-0.068 of
 /// direct summation's time) on it or a little above, at \f$ 2\times10^{-3} \f$ to \f$
 /// 8\times10^{-3} \f$ (0.056-0.059) above it -- at 1276 interactions it takes the time of the
 /// angle's 1313.  For the time it takes, the relative criterion buys nothing here: each of its
@@ -639,24 +640,25 @@ TreeStudy step2_tree(const app::Chapter& chapter, const Parameters& par) {
 /// The second half of the step times one evaluation of each method on Evrard spheres of 1024
 /// to 65536 particles (to 8192 with `--quick`), each with the smoothing lengths of its first
 /// step.  Direct summation is timed once, and only up to 32768 particles: at 65536 one
-/// evaluation would add about ten seconds to the chapter (four times the 2.7 s at 32768) for a
+/// evaluation would add about ten seconds to the chapter (four times the 2.6 s at 32768) for a
 /// point that its \f$ N^2 \f$ line already predicts.  The tree is timed three times and the median
 /// kept.  The table gives both times, their ratio, and the tree's time per particle, which
 /// stays flat if the cost grows as \f$ N \f$ and grows slowly if it grows as
 /// \f$ N\log N \f$.
 ///
 /// In the recorded run direct summation's time grows about fourfold at each doubling of N
-/// (0.1626 s at 8192 particles, 0.6850 s at 16384, 2.6770 s at 32768), the tree's about twofold
-/// (0.0101 s, 0.0243 s, 0.0537 s, then 0.1074 s at 65536), so the tree's advantage grows with
-/// N: 16.2 times at 8192 particles, 49.9 at 32768.  Its time per particle rises from 1.23 to
-/// 1.64 microseconds between 8192 and 65536 particles, more than the \f$ \log N \f$ of the
-/// walk alone (1.23 times): all of it between 8192 and 32768 particles, where, we think, the
-/// walk outgrows the processor's caches.  (A run on a machine with AVX2, with the
-/// tree's earlier leaves of 12 and groups of 16, gave 2.13 and 3.06 microseconds: timings vary
-/// with the machine, and on a shared one by a fifth or more from one run to the next; only
-/// ratios taken within one run compare two methods.)
-/// Below 4096 particles the ratio is small, and the time per particle higher: the tree runs on
-/// one thread there, and the softened near field is most of such a small sphere.
+/// (0.1668 s at 8192 particles, 0.6763 s at 16384, 2.6059 s at 32768), the tree's about twofold
+/// (0.0101 s, 0.0206 s, 0.0466 s, then 0.1011 s at 65536), so the tree's advantage grows with
+/// N: 16.5 times at 8192 particles, 55.9 at 32768.  Its time per particle rises from 1.23 to
+/// 1.54 microseconds between 8192 and 65536 particles, 1.25 times: about the
+/// \f$ \log N \f$ of the walk alone (1.23 times).  Other recordings on the same machine rose
+/// by 1.3-1.4 times, with a step near 32768 particles that we took for the walk outgrowing the
+/// processor's caches: one evaluation at a time, such timings move from run to run.  (A run on a
+/// machine with AVX2, with the tree's earlier leaves of 12 and groups of 16, gave 2.13 and 3.06
+/// microseconds: timings vary with the machine, and on a shared one by a fifth or more from one run
+/// to the next; only ratios taken within one run compare two methods.)  Below 4096 particles the
+/// ratio is small, and the time per particle higher: the tree runs on one thread there, and the
+/// softened near field is most of such a small sphere.
 
 void step2_cost_against_n(const app::Chapter& chapter, const Parameters& par, TreeStudy& study) {
   std::vector<int> counts = {1024, 2048, 4096, 8192};
@@ -879,7 +881,11 @@ struct Collapse {
 /// Lagrangian code and the six SPH runs; then, for the SPH runs, the steps, the wall time,
 /// the relative change of the total energy at the end and the momentum drift.  A second table
 /// gives each run's largest change of the total energy on the way and when it came (the end
-/// value hides how much was lost at the bounce and won back).  A third sets the two runs with
+/// value hides how much was lost at the bounce and won back).  A third says where the kinetic
+/// energy sits at the end: how much of it is the drift of the centre of mass, how much gas is
+/// no longer bound to the rest (\f$ \tfrac12|\mathbf v - \mathbf v_\mathrm{cm}|^2 + u + \Phi >
+/// 0 \f$, `app::unbound_gas`, with \f$ \Phi \f$ from direct summation; for our 1D code from
+/// its shells), and how much kinetic energy that gas carries.  A fourth sets the two runs with
 /// individual time steps against their runs with one step for all: their particle updates, how
 /// many times fewer those are, and how many times less wall time they took.  The times say as
 /// much as the heights.  In the recorded run the kinetic energy of every run peaks close to
@@ -928,6 +934,19 @@ void print_energy_table(const Collapse& c, const Parameters& par) {
     }
     std::printf("    %-21s %9.2e %7.3f\n", name(run).c_str(), largest, t_largest);
   }
+  // Where the kinetic energy sits at the end: the gas no longer bound, and the drift.
+  std::printf(
+      "  at t = %.1f: the kinetic energy, that of the centre of mass's motion, and the gas\n"
+      "  no longer bound (1/2 |v - v_cm|^2 + u + Phi > 0) with its kinetic energy:\n",
+      par.t_end);
+  std::printf("    %-21s %8s %8s %10s %10s\n", "", "E_kin", "drift", "unbound m", "its E_kin");
+  const auto unbound_row = [](const std::string& label, const app::UnboundGas& g) {
+    std::printf("    %-21s %8.4f %8.4f %10.4f %10.4f\n", label.c_str(), g.kinetic, g.bulk, g.mass,
+                g.unbound_kinetic);
+  };
+  unbound_row("ours, 1D", app::unbound_gas(ref.own_end, ref.own_zone_mass));
+  for (const app::EvrardRun* run : {&c.runs[0], &c.runs[1], &c.runs[2]})
+    unbound_row(run->name, app::unbound_gas(run->at_end));
   std::printf("  individual time steps against one step for all:\n");
   std::printf("    %-10s %16s %12s %12s\n", "", "particle updates", "fewer by", "faster by");
   for (std::size_t k = 0; k < c.own_steps.size(); ++k) {
@@ -1078,8 +1097,8 @@ Profiles step5_profiles(const app::Chapter& chapter, const Collapse& c) {
 /// relative change of the total energy, against the whole run's wall time ("per CPU second"
 /// means here per second of wall time on the machine's two threads, what a user waits for).
 /// Below 4096 particles a step runs on one thread (two would not be faster: starting them costs
-/// more than the work), so the wall time grows 3.0-3.1 times from 1024 to 2048 particles,
-/// 1.6-1.9 times from 2048 to 4096, where the second thread starts, and 2.5-2.6 times from 4096 to
+/// more than the work), so the wall time grows 2.6-3.3 times from 1024 to 2048 particles,
+/// 1.6-2.0 times from 2048 to 4096, where the second thread starts, and 2.5-3.0 times from 4096 to
 /// 8192: the cost slopes below are those of the time a user waits, threads included.  The runs at
 /// Fig 5's particle number are Step 4's, timed to t = 0.8.  The figure is
 /// `evrard_error_vs_time.png`.
@@ -1163,9 +1182,9 @@ Cost step6_error_against_run_time(const app::Chapter& chapter, const Parameters&
 
 /// **Reading the cost slopes.**  The order says how fast a method converges; the cost slope
 /// says what a second of computing buys, which is the question of this step.  In the recorded
-/// run, from 1024 to 8192 particles, the slopes in \f$ L_1(\log_{10}\rho) \f$ are -0.19
-/// (standard), -0.12 (modified) and -0.26 (switch), and in \f$ L_1(v_r) \f$ -0.26, -0.13 and
-/// -0.30: the switch gains the most accuracy per doubling of the time in both, the modified
+/// run, from 1024 to 8192 particles, the slopes in \f$ L_1(\log_{10}\rho) \f$ are -0.18
+/// (standard), -0.12 (modified) and -0.25 (switch), and in \f$ L_1(v_r) \f$ -0.25, -0.13 and
+/// -0.29: the switch gains the most accuracy per doubling of the time in both, the modified
 /// viscosity the least -- though in velocity it starts far lower, which is why it is still
 /// ahead at these resolutions (\ref ch06_findings "the findings").  The energy error falls
 /// faster than \f$ \Delta x \f$, at orders 1.65, 2.38 and 1.77.
@@ -1354,7 +1373,7 @@ Extreme step7_extreme(const Parameters& par, const Collapse& c) {
 /// \f$ 7.5\times10^{-4} \f$ (both targets met with a factor 9 to spare); monopoles at
 /// the same angle: \f$ 2.8\times10^{-3} \f$ and \f$ 6.3\times10^{-3} \f$.  Its net force is
 /// \f$ 9\times10^{-7} \f$ of the forces' scale (direct summation: round-off).  One evaluation
-/// costs 1.23 microseconds per particle at 8192 particles and 1.64 at 65536 in the recorded run
+/// costs 1.23 microseconds per particle at 8192 particles and 1.54 at 65536 in the recorded run
 /// (two threads of a shared machine; the benchmark program measures it on a quiet one): the
 /// \f$ N\log N \f$ line of `tree_cost.png`.  Why \f$ \theta = 0.3 \f$ and not the 0.5-0.7 of
 /// many codes (whose angles measure nodes differently, Step 2): on this step's Evrard sphere
@@ -1413,10 +1432,18 @@ Extreme step7_extreme(const Parameters& par, const Collapse& c) {
 /// without it (`sph::Leapfrog::work_of_term_kicks = false`), against \f$ 2\times10^{-5} \f$ for the
 /// standard viscosity; and the kinetic energy peaks at 0.59 either way, so the payment is not why
 /// the collapse goes too deep.  Since the collective term is not a pair force, momentum drifts by
-/// more than a quarter of \f$ \sum m|\mathbf v| \f$.  And after the bounce the modified run keeps a
-/// kinetic energy near 0.4 to t = 3 (Fig 5 b), twice the reference's 0.21; where that energy sits
-/// -- a ringing core, gas thrown out, or the bulk motion its momentum drift gives the sphere --
-/// this chapter does not measure.
+/// more than a quarter of \f$ \sum m|\mathbf v| \f$.
+///
+/// **Where the late kinetic energy sits.**  After the bounce the modified run keeps a kinetic
+/// energy near 0.4 to t = 3 (Fig 5 b), twice the reference's 0.21.  Step 4's third table says
+/// where: at t = 3 the gas no longer bound to the rest holds 0.3529 of its 0.3847 -- 11.5 % of
+/// the mass, thrown off at the bounce -- and the drift of its centre of mass only 0.0086.  Our
+/// 1D code throws off 7.95 % of the mass with 0.1963 of its 0.2046, the standard viscosity
+/// 6.54 % with 0.0935, the switch 7.10 % with 0.1135.  So in every calculation the late kinetic
+/// energy is the outflow's, and the viscosities differ in how hard the bounce throws: the
+/// modified viscosity's collapse, too deep, rebounds too hard -- half as much gas again as the
+/// 1D code, with nearly twice its kinetic energy -- while the standard viscosity, which
+/// brakes the infall before the shock, throws off less and more slowly.
 ///
 /// **Figs 6-7** (`fig6_standard.png`, `fig7_modified.png`).  Selhammar: "the main difference
 /// between these models are the sharper gradients with modified artificial viscosity".
@@ -1436,7 +1463,7 @@ Extreme step7_extreme(const Parameters& par, const Collapse& c) {
 ///
 /// **Error against run time** (`evrard_error_vs_time.png`, t = 0.8).  At 8192 particles
 /// \f$ L_1(\log_{10}\rho) \f$ is 0.100 (standard), 0.084 (modified), 0.081 (switch) and
-/// \f$ L_1(v_r) \f$ 0.164, 0.085, 0.116, in 3.4, 8.4 and 4.2 s (the run in `output.txt`, two
+/// \f$ L_1(v_r) \f$ 0.164, 0.085, 0.116, in 3.4, 8.2 and 4.3 s (the run in `output.txt`, two
 /// threads of a machine with AVX-512).  From 1024 to 8192 particles
 /// the modified viscosity converges at order 0.43 in density, the standard one at 0.71 and the
 /// switch at 0.95.  With `--largest 65536` (about 15 minutes in all) the series goes on to
@@ -1465,11 +1492,11 @@ Extreme step7_extreme(const Parameters& par, const Collapse& c) {
 /// usual size (maximum \f$ 5\times10^{-4} \f$) and feels \f$ GM/r^2 \f$ to
 /// \f$ 3\times10^{-7} \f$.
 ///
-/// **What it costs.**  At 8192 particles the standard run to t = 3 takes 39 s in the recorded
-/// run (two threads of an AMD EPYC with AVX-512; 1368 steps), the modified viscosity's 113 s:
+/// **What it costs.**  At 8192 particles the standard run to t = 3 takes 38 s in the recorded
+/// run (two threads of an AMD EPYC with AVX-512; 1368 steps), the modified viscosity's 111 s:
 /// its denser centre needs 3033 steps, each 1.3 times the standard's cost (the collective
 /// term's sums).  With individual time steps (Step 4's last two runs) the same collapses take
-/// 30 s and 71 s: 1.28 and 1.58 times faster, for 1.87 and 2.27 times fewer particle updates,
+/// 27 s and 66 s: 1.40 and 1.68 times faster, for 1.87 and 2.27 times fewer particle updates,
 /// with energy extremes within 0.2 % (standard) and 1.2 % (modified) of the runs with one step
 /// for all, and a smaller energy error (\f$ 5.9\times10^{-3} \f$ against
 /// \f$ 8.8\times10^{-3} \f$; \f$ 3.5\times10^{-3} \f$ against
@@ -1481,11 +1508,11 @@ Extreme step7_extreme(const Parameters& par, const Collapse& c) {
 /// 8192-particle collapse, 60 s, is **met** by the standard viscosity, with one step for all and
 /// with individual steps (on a machine with AVX2 the same runs took 70 and 45 s: met with
 /// individual steps only), and by the switch (33 s); the modified viscosity misses it both ways
-/// (113 s and 71 s).  The gain is less than the updates saved: there
+/// (111 s and 66 s).  The gain is less than the updates saved: there
 /// are more steps (1982 against 1368: the power-of-two levels round every step down, by 28 % on
 /// average), and each step still drifts every particle, builds the tree and keeps the neighbour
-/// search's bookkeeping for all of them; an update costs 1.4-1.5 times one with one step for all
-/// (the design page says where the time goes).  The whole chapter takes 6 minutes (10 on the
+/// search's bookkeeping for all of them; an update costs 1.3 times one with one step for all
+/// (the design page says where the time goes).  The whole chapter takes 5.7 minutes (10 on the
 /// machine with AVX2), against a target of 3: **not met**; Figs 5-7 and the claims use one step
 /// for all, as the paper does, and the modified viscosity's run alone takes nearly two of the
 /// three minutes.  The benchmark (`build/bench/bench --only evrard`, three runs in one

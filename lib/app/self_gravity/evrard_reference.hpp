@@ -72,12 +72,14 @@ struct EvrardReference {
   std::vector<double> r, rho, v, pressure;
   /// the energies of lib/sph's Lagrangian code, every 0.005 in time
   std::vector<double> own_t, own_kinetic, own_thermal, own_potential;
-  sph::LagrangianProfile own_08;  ///< its profile at t = 0.8
+  sph::LagrangianProfile own_08;   ///< its profile at t = 0.8
+  sph::LagrangianProfile own_end;  ///< and at the end
+  std::vector<double> own_zone_mass;
 };
 
 /// Runs lib/sph's Lagrangian code, \p own_zones equal-mass shells with self-gravity, from the
-/// Evrard sphere's initial state to \p t_end, and records its energies and its profile at
-/// t = 0.8 in \p ref.
+/// Evrard sphere's initial state to \p t_end, and records its energies, its profile at
+/// t = 0.8 and at the end, and its zones' masses in \p ref.
 inline void run_own_lagrangian(EvrardReference& ref, int own_zones, double t_end) {
   sph::LagrangianOptions o;
   o.left = sph::LagrangianEnd::centre;
@@ -101,6 +103,8 @@ inline void run_own_lagrangian(EvrardReference& ref, int own_zones, double t_end
   sphere.run_until(0.8, watch);
   ref.own_08 = sphere.profile();
   sphere.run_until(t_end, watch);
+  ref.own_end = sphere.profile();
+  ref.own_zone_mass = sphere.zone_mass();
 }
 
 /// Reads the two reference tables from the directory \p dir, and runs lib/sph's Lagrangian code

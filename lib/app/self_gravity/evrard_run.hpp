@@ -44,6 +44,7 @@ struct EvrardRun {
   std::vector<double> t, kinetic, thermal, potential;  ///< after every step
   sph::Particles<3> at_08;                             ///< the particles at t = 0.8
   sph::Vec<3> centre_08 = sph::Vec<3>::Zero();         ///< their centre of mass
+  sph::Particles<3> at_end;                            ///< the particles at the end
   double seconds_08 = 0, seconds = 0;                  ///< wall time to t = 0.8, to the end
   long steps_08 = 0, steps = 0;                        ///< steps to t = 0.8, to the end
   double peak_density = 0, t_peak = 0;  ///< the largest density of any particle, and when
@@ -151,6 +152,7 @@ EvrardRun run_evrard(const std::string& name, const sph::EvrardSetup& setup,
   progress.finish();
   run.seconds = clock.seconds();
   run.steps = sim.steps();
+  run.at_end = sim.particles();
   run.momentum_drift = app::momentum_drift(sim.particles(), sph::Vec<3>::Zero());
   run.energy_error = std::abs(total_at(run, run.t.size() - 1) / total_at(run, 0) - 1);
   return run;
