@@ -50,7 +50,7 @@
 ///     their softening, a particle thrown far out.
 ///
 /// What we find, in short.  The tree with quadrupoles at its default opening angle
-/// \f$ \theta = 0.3 \f$ is 17 times faster than direct summation at 8192 particles and 52
+/// \f$ \theta = 0.3 \f$ is 17 times faster than direct summation at 8192 particles and 56
 /// times at 32768 (the recorded run; the ratio grows as \f$ N/\log N \f$), with a
 /// 99th-percentile force error of \f$ 3\times10^{-4} \f$.  Both of
 /// Selhammar's claims about the collapse reproduce as he states them: the standard viscosity's
@@ -66,7 +66,7 @@
 /// with time), the modified viscosity in velocity at every resolution of the series (1024 to
 /// 8192 particles).  Softening gravity with the smoothing length costs 1 % of the energy by
 /// t = 3, and up to 3 % at the bounce; a fixed softening length conserves it to
-/// \f$ 4\times10^{-5} \f$.  Details in
+/// \f$ 4\times10^{-5} \f$ by t = 3 (\f$ 1.1\times10^{-4} \f$ at most, at the bounce).  Details in
 /// \ref ch06_findings "the findings".
 ///
 /// \section ch06_gravity The gravity of an SPH particle
@@ -620,20 +620,25 @@ TreeStudy step2_tree(const app::Chapter& chapter, const Parameters& par) {
 /// the tests, whose centre holds many particles with small forces -- the same \f$ \alpha \f$
 /// gives a largest error two fifths of the angle's, and on the collapsed sphere at t = 0.8 (22000
 /// particles, a development run) it takes 44 % fewer multipoles for a smaller largest error.
-/// In the right panel of the recorded run its points lie on the curve that the quadrupoles'
-/// points trace, or above it, by up to 1.4 times: at \f$ \alpha \le 10^{-3} \f$ (0.061-0.068 of
-/// direct summation's time) on it or a little above, at \f$ 2\times10^{-3} \f$ to \f$
-/// 8\times10^{-3} \f$ (0.056-0.059) above it -- at 1276 interactions it takes the time of the
-/// angle's 1313.  For the time it takes, the relative criterion buys nothing here: each of its
-/// tests costs more (a square root, and the particles' accelerations to gather), and on this sphere
-/// it has few cancelling pulls to exploit.  (In a run on a machine with AVX2 its points lay below
-/// and left of the line; an evaluation takes ten milliseconds, and such timings move from run to
-/// run.)  Counted in interactions, which carry no such noise, every relative row lies on the
-/// quadrupoles' line (within 2 %) or below it: 1365 interactions give a 99th percentile of \f$
-/// 4.79\times10^{-4} \f$ where the angle's line, between 0.3 and 0.4, gives about \f$
-/// 5\times10^{-4} \f$.  (Its rows are measured with the accelerations of earlier evaluations at the
-/// same positions, the best case; in a run they are a step old.)  The chapter's runs keep the
-/// geometric criterion, the one the recorded numbers were made with; `--relative` switches them.
+/// In the right panel of the recorded run its 99th percentiles lie on the curve that the
+/// quadrupoles' points trace, or above it, by up to 1.4 times: at \f$ \alpha \le 10^{-3} \f$
+/// (0.061-0.068 of direct summation's time) on it or a little above, at \f$ 2\times10^{-3} \f$
+/// to \f$ 8\times10^{-3} \f$ (0.056-0.059) above it -- at 1276 interactions it takes the time
+/// of the angle's 1313.  Its maxima lie on the quadrupoles' curve up to
+/// \f$ \alpha = 2\times10^{-3} \f$ and below it at \f$ 4\times10^{-3} \f$ and
+/// \f$ 8\times10^{-3} \f$ (\f$ 1.8\times10^{-3} \f$, where the angle's curve at the same
+/// time is 1.3 to 2 times higher).  For the time it
+/// takes, the relative criterion buys nothing in the 99th percentile here, and a smaller worst
+/// error at the larger alphas: each of its tests costs more (a square root, and the particles'
+/// accelerations to gather), and on this sphere it has few cancelling pulls to exploit.  (In a run
+/// on a machine with AVX2 its points lay below and left of the line; an evaluation takes ten
+/// milliseconds, and such timings move from run to run.)  Counted in interactions, which carry no
+/// such noise, every relative row lies on the quadrupoles' line (within 4 %) or below it: 1365
+/// interactions give a 99th percentile of \f$ 4.79\times10^{-4} \f$ where the angle's line, between
+/// 0.3 and 0.4, gives about \f$ 5\times10^{-4} \f$.  (Its rows are measured with the accelerations
+/// of earlier evaluations at the same positions, the best case; in a run they are a step old.)  The
+/// chapter's runs keep the geometric criterion, the one the recorded numbers were made with;
+/// `--relative` switches them.
 
 /// \subsection ch06_tree_cost The cost against N
 ///
@@ -1098,7 +1103,7 @@ Profiles step5_profiles(const app::Chapter& chapter, const Collapse& c) {
 /// means here per second of wall time on the machine's two threads, what a user waits for).
 /// Below 4096 particles a step runs on one thread (two would not be faster: starting them costs
 /// more than the work), so the wall time grows 2.6-3.3 times from 1024 to 2048 particles,
-/// 1.6-2.0 times from 2048 to 4096, where the second thread starts, and 2.5-3.0 times from 4096 to
+/// 1.6-2.0 times from 2048 to 4096, where the second thread starts, and 2.4-3.0 times from 4096 to
 /// 8192: the cost slopes below are those of the time a user waits, threads included.  The runs at
 /// Fig 5's particle number are Step 4's, timed to t = 0.8.  The figure is
 /// `evrard_error_vs_time.png`.
@@ -1509,44 +1514,43 @@ Extreme step7_extreme(const Parameters& par, const Collapse& c) {
 /// with individual steps (on a machine with AVX2 the same runs took 70 and 45 s: met with
 /// individual steps only), and by the switch (33 s); the modified viscosity misses it both ways
 /// (111 s and 66 s).  The gain is less than the updates saved: there
-/// are more steps (1982 against 1368: the power-of-two levels round every step down, by 28 % on
-/// average), and each step still drifts every particle, builds the tree and keeps the neighbour
-/// search's bookkeeping for all of them; an update costs 1.3 times one with one step for all
-/// (the design page says where the time goes).  The whole chapter takes 5.7 minutes (10 on the
-/// machine with AVX2), against a target of 3: **not met**; Figs 5-7 and the claims use one step
-/// for all, as the paper does, and the modified viscosity's run alone takes nearly two of the
-/// three minutes.  The benchmark (`build/bench/bench --only evrard`, three runs in one
-/// sitting on the machine of `output.txt`) times the step at t = 0.8 with 22000 particles at
-/// 3.2-3.9 microseconds a particle, of which the tree is 1.7-1.9, and at 3.1-3.2 (tree 1.5)
-/// with the relative criterion, whose forces meet the same accuracy targets (Step 2).  The
-/// target for the whole step, 3, was set against a production code's collapse with 56
-/// neighbours, at 9.3 microseconds a particle-step; the paper's 64 make an eighth more pairs.
-/// With 56 our step takes 3.2-3.3 with the opening angle and 2.9-3.1 (tree 1.4-1.5) with the
-/// relative criterion as well: against the target, with the production code's neighbour number
-/// and forces of the accuracy the targets ask for, **at the target** (below it in two of the
-/// three runs, above it by 5 % in the third), and about three times faster than that code; with
-/// the chapter's own set-up (64 neighbours, \f$ \theta = 0.3 \f$) **not met** (on the machine
-/// with AVX2, before the tree's leaves and groups were enlarged: 5.5 and 4.9).  What makes the
-/// step as fast as it is: the tree's near field sums its softened pairs several at a time in SIMD
-/// registers (the design page says which compiler flag allows it), about 1.4 times faster
-/// than one pair at a time; the neighbour search bounds how far a particle's neighbourhood has
-/// moved on cells about as large as its own reach, not the largest one in the sphere, which in
-/// the collapsed centre saves 39 % of the searches from t = 0.8 to 1.2; and the particles of
-/// small h search on grids of finer cells than the rest (the design page): after the bounce,
-/// when the gas thrown out spreads the grid over a box a hundred times the core's size, a
-/// search near the centre had scanned 40 particles for each one it kept, and the grid search
-/// was 11 % of the modified run's step at t = 3; with the finer grids, 3 %.  Still a fifth of
-/// the particles search again every step at t = 0.8 (the shock tube: 4 %), and the tree sums
-/// some 3000 interactions a particle -- half of them single particles of nearby leaves, too
-/// near a group, or within its softening range, to be summed as multipoles.  The leaves hold
-/// up to 16 particles and the groups up to 32, where they were 12 and 16: on processors with
-/// 16 floats to a SIMD register single particles are cheap, and larger groups walk the tree
-/// fewer times (the tree 2-9 % faster in the collapse; the design page).  (Both changes moved
-/// the modified run's numbers, which its collective term amplifies, as Step 4's checks say:
-/// the finer grids find the same candidates in another order, and its largest thermal energy
-/// moved by 0.9 %, from 2.382 to 2.360; the larger leaves accept other nodes, changing every
-/// force at the tree's error, and it moved by 0.7 %, to 2.376.  The standard viscosity's
-/// extremes printed the same to four digits.)
+/// are more steps (1982 against 1368: the power-of-two levels round every step down, and the
+/// steps are 31 % shorter on average), and each step still drifts every particle, builds the tree
+/// and keeps the neighbour search's bookkeeping for all of them; an update costs 1.3 times one with
+/// one step for all (the design page says where the time goes).  The whole chapter takes 5.7
+/// minutes (10 on the machine with AVX2), against a target of 3: **not met**; Figs 5-7 and the
+/// claims use one step for all, as the paper does, and the modified viscosity's run alone takes
+/// nearly two of the three minutes.  The benchmark (`build/bench/bench --only evrard`, three runs
+/// in one sitting on the machine of `output.txt`) times the step at t = 0.8 with 22000 particles at
+/// 3.2-3.9 microseconds a particle, of which the tree is 1.7-1.9, and at 3.1-3.2 (tree 1.5) with
+/// the relative criterion, whose forces meet the same accuracy targets (Step 2).  The target for
+/// the whole step, 3, was set against a production code's collapse with 56 neighbours, at 9.3
+/// microseconds a particle-step; the paper's 64 make an eighth more pairs.  With 56 our step takes
+/// 3.2-3.3 with the opening angle and 2.9-3.1 (tree 1.4-1.5) with the relative criterion as well:
+/// against the target, with the production code's neighbour number and forces of the accuracy the
+/// targets ask for, **at the target** (below it in two of the three runs, above it by 5 % in the
+/// third), and about three times faster than that code; with the chapter's own set-up (64
+/// neighbours, \f$ \theta = 0.3 \f$) **not met** (on the machine with AVX2, before the tree's
+/// leaves and groups were enlarged: 5.5 and 4.9).  What makes the step as fast as it is: the tree's
+/// near field sums its softened pairs several at a time in SIMD registers (the design page says
+/// which compiler flag allows it), about 1.4 times faster than one pair at a time; the neighbour
+/// search bounds how far a particle's neighbourhood has moved on cells about as large as its own
+/// reach, not the largest one in the sphere, which in the collapsed centre saves 39 % of the
+/// searches from t = 0.8 to 1.2; and the particles of small h search on grids of finer cells than
+/// the rest (the design page): after the bounce, when the gas thrown out spreads the grid over a
+/// box a hundred times the core's size, a search near the centre had scanned 40 particles for each
+/// one it kept, and the grid search was 11 % of the modified run's step at t = 3; with the finer
+/// grids, 3 %.  Still a fifth of the particles search again every step at t = 0.8 (the shock tube:
+/// 4 %), and the tree sums some 3000 interactions a particle -- half of them single particles of
+/// nearby leaves, too near a group, or within its softening range, to be summed as multipoles.  The
+/// leaves hold up to 16 particles and the groups up to 32, where they were 12 and 16: on processors
+/// with 16 floats to a SIMD register single particles are cheap, and larger groups walk the tree
+/// fewer times (the tree 2-9 % faster in the collapse; the design page).  (Both changes moved the
+/// modified run's numbers, which its collective term amplifies, as Step 4's checks say: the finer
+/// grids find the same candidates in another order, and its largest thermal energy moved by 0.9 %,
+/// from 2.382 to 2.360; the larger leaves accept other nodes, changing every force at the tree's
+/// error, and it moved by 0.7 %, to 2.376.  The standard viscosity's extremes printed the same to
+/// four digits.)
 
 /// \section ch06_try What to try
 ///
