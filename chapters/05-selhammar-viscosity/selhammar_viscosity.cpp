@@ -467,7 +467,8 @@ void step1_stiffness(const app::Chapter& chapter, const Parameters& par) {
 /// sound speed (0.033), so the excess over sound is \f$ 2r - c \f$, always below \f$ 2r \f$: our
 /// reading switches the term off for every pair, the printed one on for every supersonic pair.
 /// And Fig 3 shows the modified viscosity heating the sphere hardly at all.  The step counts the
-/// pairs on the sphere at t = 0 (sph::vnr_census), both ways.
+/// pairs on the sphere at t = 0 for which the term is on, both ways: a census, out of the pairs
+/// that approach faster than sound (sph::vnr_census; \ref ch05_activity "below" says more).
 ///
 /// **Eq 16, the name Δv.**  Eq 14 gives the name \f$ \Delta\mathbf v_i \f$ to the
 /// mean velocity of the neighbourhood, and eq 16 uses it without saying more.  Read literally,
@@ -489,8 +490,9 @@ void step1_stiffness(const app::Chapter& chapter, const Parameters& par) {
 /// rate, and the compression seems to explain only half the approach.)  The tubes: with the
 /// mean-velocity reading the kinetic energy and peak speed at t = 20 are within 4 % of the
 /// standard viscosity's; with the difference reading the gas has almost stopped -- its kinetic
-/// energy is 5 % of the standard run's, and a quarter of the momentum scale has gone
-/// (2.5e-01).  So eq 16 must be
+/// energy is 5 % of the standard run's, and a quarter of the momentum scale
+/// (\f$ \sum_i m_i|\mathbf v_i| \f$, against which a drift of the total momentum is measured)
+/// has gone (2.5e-01).  So eq 16 must be
 /// read literally, and the rest of the chapter does.  The printed normalisation changes nothing
 /// visible here, and one more row foreshadows Step 3: the run without any viscosity has about
 /// the same kinetic energy and error as the modified viscosity.
