@@ -20,10 +20,10 @@
 /// each.  The one detail they add -- and this chapter is mostly about why it matters -- is the
 /// weight of each neighbour: its own volume \f$ m_j/\rho_j \f$, not particle i's.
 ///
-/// Before anything moves (that is chapter 8), we test the operators where the answer is known:
-/// a velocity field \f$ v_x = \sin 2\pi y \f$ on 5000 particles in a periodic unit box, whose
-/// curl curl is \f$ (4\pi^2\sin 2\pi y, 0, 0) \f$.  Watkins et al. compare their method with two
-/// others on three particle sets -- their Figs 1-3 -- and we do the same, in 2D and 3D:
+/// Before anything moves (that is for a chapter 8, planned), we test the operators where the answer
+/// is known: a velocity field \f$ v_x = \sin 2\pi y \f$ on 5000 particles in a periodic unit box,
+/// whose curl curl is \f$ (4\pi^2\sin 2\pi y, 0, 0) \f$.  Watkins et al. compare their method with
+/// two others on three particle sets -- their Figs 1-3 -- and we do the same, in 2D and 3D:
 ///  - **Flebbe et al. (1994)**: the viscous stress tensor from first derivatives with the
 ///    standard weights \f$ m_j/\rho_i \f$, then its divergence in the symmetric form of the
 ///    pressure force (lib/sph/derivatives/flebbe_1994.hpp);
@@ -66,11 +66,11 @@
 /// than Flebbe with noise" holds only for noisy *positions*; and on the random set the noise of
 /// Watkins' curl curl is less than the density's by a factor 0.63, not "considerably" -- in 2D
 /// it is twice the density's.  Watkins' one change, \f$ m_j/\rho_j \f$ for \f$ m_j/\rho_i \f$,
-/// halves the error on the random set and does nothing on a glass; Flebbe's second pass doubles
-/// it again.  On a glass and for a field without divergence, Brookshaw's single pass is both the
-/// most accurate and the cheapest up to 20000 particles; then the glass's noise turns its error
-/// up, and Watkins passes it.
-/// Details in \ref ch07_findings "the findings".
+/// halves the error on Fig 3's random set and does nothing on a glass (with a simulation's
+/// densities, the self term included, it gains a factor 1.4 in 3D, 1.7 in 2D); Flebbe's second pass
+/// doubles it again.  On a glass and for a field without divergence, Brookshaw's single pass is
+/// both the most accurate and the cheapest up to 20000 particles; then the glass's noise turns its
+/// error up, and Watkins passes it.  Details in \ref ch07_findings "the findings".
 
 #include "app/chapter.hpp"
 #include "app/second_derivatives/second_derivative_figures.hpp"
@@ -179,8 +179,9 @@ using sph::setups::compression_field;
 ///
 /// On a regular lattice every particle sees the same, symmetric neighbourhood: no sum has
 /// noise, and two errors are left.  The first is the lattice's normalisation of the kernel's
-/// second moment, \f$ \kappa \f$: a first derivative of a linear field comes out \f$ \kappa \f$
-/// times too large (chapter 2 found it within 2 % of one; here 0.981 per pass in 3D).  The
+/// second moment, \f$ \kappa \f$: a first derivative of a linear field comes out multiplied by
+/// \f$ \kappa \f$ (0.981 per pass in 3D, 2 % small; \ref ch03 "chapter 3" found the gradient
+/// sums 2.2 % large in 1D at \f$ h = 1.2\Delta x \f$).  The
 /// second is the smoothing: the kernel averages the field over a ball of radius 2h, so a sum
 /// sees \f$ \hat W(k)\sin ky \f$ with \f$ \hat W(k) \approx 1 - \tfrac{k^2}{2D}\langle
 /// r^2\rangle_W \f$, slightly less than the field.  A first derivative carries each factor once;
@@ -190,11 +191,12 @@ using sph::setups::compression_field;
 /// closest pairs and does not shrink with resolution.
 ///
 /// What to look for: in 3D, where the kernel is wide (\f$ 2\pi h = 0.42 \f$), the amplitude
-/// 0.913 for the two-pass methods -- the continuum smoothing \f$ \hat W^2 = 0.942 \f$ times
-/// \f$ \kappa^2 \approx 0.96 \f$ -- against 0.960 for Brookshaw; in 2D, where it is narrow
-/// (\f$ 2\pi h = 0.14 \f$), losses near 1 %; and Watkins, "own volume" and Flebbe identical, since
-/// on a lattice every density is the same.  This is the paper's "slightly over-smoothed at the
-/// peaks", and it is not a property of disorder.
+/// 0.913 for the two-pass methods -- the continuum smoothing \f$ \hat W^2 = 0.947 \f$ at the
+/// lattice's h times \f$ \kappa^2 \approx 0.96 \f$ -- against 0.960 for Brookshaw; in 2D, where
+/// it is narrow (\f$ 2\pi h = 0.14 \f$) and \f$ \kappa \approx 1 \f$, losses near 1 %, most of
+/// them the lattice's density, 0.3 % high, counted once in each pass; and Watkins, "own volume" and
+/// Flebbe identical, since on a lattice every density is the same.  This is the paper's "slightly
+/// over-smoothed at the peaks", and it is not a property of disorder.
 ///
 /// The code lays a cubic lattice of \f$ 72^2 = 5184 \f$ particles in 2D and \f$ 18^3 = 5832 \f$
 /// in 3D, about Watkins' 5000, gives it Watkins' constant h for 30 and 60 expected neighbours
@@ -329,8 +331,10 @@ std::vector<MethodResult<D>> fig1(const app::Chapter& chapter, const Sets<D>& se
 /// Fig 2a shows the scatter; we take a uniform random number in \f$ [-\epsilon, \epsilon] \f$ on
 /// every component with \f$ \epsilon = 0.1 \f$ (option `--noise`), a tenth of the field's
 /// amplitude, and then vary \f$ \epsilon \f$ from 0.001 to 0.3, with three draws of the noise at
-/// each amplitude (every operator is linear, so one draw would make the errors exactly
-/// proportional to \f$ \epsilon \f$; three show how much of a difference is the draw's).
+/// each amplitude: the same three noise patterns (seeds 11-13) scaled to each \f$ \epsilon \f$.
+/// Every operator is linear, so the noise's part of each error is exactly proportional to
+/// \f$ \epsilon \f$ (the error itself is not: the noise-free error adds to it), and the spread
+/// of the three shows how much is the particular pattern's.
 ///
 /// What should happen follows from the sums.  Noise of size \f$ \epsilon \f$ in the velocity
 /// enters a first derivative as \f$ \epsilon \sum_j V_j\, \nabla W_{ij} \f$ -- of order
@@ -346,8 +350,8 @@ std::vector<MethodResult<D>> fig1(const app::Chapter& chapter, const Sets<D>& se
 /// Watkins' error, and Brookshaw *extremely inaccurate* at five times it or more.  What to look
 /// for: in 3D the three two-pass curves lie on each other at every amplitude; Brookshaw's is the
 /// most accurate without noise and crosses the others near \f$ \epsilon = 0.0015 \f$; at large
-/// noise it is thirteen times theirs.  In 2D h is three times smaller and every error at a given
-/// noise seven to eight times larger.
+/// noise it is thirteen times theirs.  In 2D h is three times smaller and every error at large
+/// noise (\f$ \epsilon \ge 0.1 \f$) seven to eight times larger.
 ///
 /// \subsection ch07_sweep The sweep over the noise amplitude
 ///
@@ -534,7 +538,8 @@ CompressionStudy<D> compression(const app::Chapter& chapter, const Sets<D>& sets
 /// two choices part.  With \f$ V_{ij} = m_j/\rho_j \f$ each node carries its own volume: where
 /// neighbours crowd, each weighs less, and the quadrature stays fair.  With \f$ m_j/\rho_i \f$
 /// every node carries particle i's volume: a crowd on one side is counted at full weight and
-/// tilts the matrix.  Both are exact on a lattice; they part as the particles disorder.
+/// tilts the matrix.  Both give the same answer on a lattice, where every \f$ \rho_j = \rho_i \f$;
+/// they part as the particles disorder.
 ///
 /// Flebbe's second pass is worse in a different way.  Its symmetric form
 /// \f$ \sum_j m_j(\sigma_i/\rho_i^2 + \sigma_j/\rho_j^2)\nabla_i W_{ij} \f$ is not a difference:
@@ -550,9 +555,9 @@ CompressionStudy<D> compression(const app::Chapter& chapter, const Sets<D>& sets
 /// and apart, as open markers, the Poisson set as the paper sums it for Fig 3, without the self
 /// term.  What to look for: on the glass Watkins and "own volume" agree (in 3D all three two-pass
 /// methods do, and Brookshaw is at half their error); as the disorder grows "own volume" and
-/// Flebbe leave Watkins and Brookshaw rises steepest.  And the open markers: the same Poisson
-/// set with its densities 18 % lower gives Watkins a *smaller* error -- the volumes
-/// \f$ m_j/\rho_j \f$ are only as good as the densities.
+/// Flebbe leave Watkins, and Brookshaw rises steepest in 3D (in 2D as steeply as Flebbe).  And the
+/// open markers: the same Poisson set with its densities 15 % lower gives Watkins a *smaller* error
+/// -- the volumes \f$ m_j/\rho_j \f$ are only as good as the densities.
 ///
 /// The code moves the settled set's particles with `sph::disturb` (its own seed, 101, so that
 /// every run moves them alike), and builds each moved set afresh: a new neighbour list and new
@@ -779,6 +784,8 @@ TermStudy viscosity_term(const Sets<3>& sets) {
 ///    Brookshaw's);
 ///  - with a noisy velocity, Watkins is the most accurate, Flebbe very accurate (within twice
 ///    Watkins' error), Brookshaw extremely inaccurate (an rms error more than five times Watkins');
+///  - §3's conclusion, Watkins "considerably more accurate" than Flebbe with noise (Watkins'
+///    rms error below half Flebbe's on the noisy-velocity set);
 ///  - on the random set Watkins is the most accurate by far (below half the next method's
 ///    error);
 ///  - the noise of Watkins' curl curl on the random set is "considerably less" than the noise in
@@ -894,11 +901,12 @@ void check_claims(app::Chapter& chapter, bool own_schemes, const Results& r) {
 ///    \f$ m_j/\rho_j \f$ must be fair estimates, so a random set must leave the self term out.
 ///  - **A compressive field.**  For \f$ v_x = \sin 2\pi x \f$ Watkins and Flebbe give the gradient
 ///    of the divergence to 0.043 and 0.047, and Watkins' curl curl is 0.005 where it should be
-///    zero; Brookshaw's Laplacian taken as a curl curl is wrong by the whole field (rms 0.69,
-///    the rms of a unit sine): it cannot model a bulk viscosity, nor shear in a compressing flow.
+///    zero; Brookshaw's Laplacian taken as a curl curl is wrong by the whole field (rms 0.69 =
+///    0.977 times 0.707, the rms of its unit sine): it cannot model a bulk viscosity, nor shear
+///    in a compressing flow.
 ///  - **Error against run time.**  A two-pass method costs 2.4 times Brookshaw's pass.  On a
 ///    glass and for a field without divergence Brookshaw is both cheaper and more accurate up to
-///    20000 particles, where its error turns up (0.019 at 10000, 0.022 at 40000: the glass's
+///    20000 particles; its error bottoms out at 10000 (0.019) and is 0.022 at 40000 (the glass's
 ///    noise relative to the field grows as h shrinks), as Flebbe's does (0.033 to 0.036).
 ///    Watkins' keeps falling, 0.116 at 1000 to 0.017 at 40000, and passes Brookshaw's between
 ///    20000 and 40000; its own noise term will turn it up too, at larger N.  At N = 5000 the error
@@ -909,7 +917,8 @@ void check_claims(app::Chapter& chapter, bool own_schemes, const Results& r) {
 ///    momentum: its net force is \f$ 5\times10^{-4} \f$ of \f$ \sum_i m_i|\mathbf a_i| \f$ on the
 ///    settled set, where Flebbe's symmetric form gives \f$ 10^{-17} \f$.  One evaluation of the
 ///    step with it costs 1.7 times the pressure force's at 5000 particles (the program's Step 9),
-///    1.6 times at 40000 (`build/bench/bench --only derivatives`).
+///    and 1.6 times at 40000 in the bench (`build/bench/bench --only derivatives`, not in this
+///    program's output; the design page's table has its numbers).
 ///  - **Its time step.**  The term limits the step to
 ///    \f$ 0.125\,h^2\rho/(\mu_b + \frac43\mu_s) \f$, the constant Morris, Fox & Zhu (1997) use
 ///    for a one-pass Laplacian.  A two-pass operator damps a mode of wavenumber k at the rate
@@ -917,12 +926,14 @@ void check_claims(app::Chapter& chapter, bool own_schemes, const Results& r) {
 ///    \f$ kh \approx 1.8 \f$) and falls to nothing at the particle scale: the limit is more than
 ///    ten times stricter than stability needs, and the shortest modes are barely damped at all
 ///    -- perhaps the null space behind the alternating rows that Watkins et al. see grow in their
-///    Poiseuille flow, which chapter 8 will test.
+///    Poiseuille flow, which a planned chapter 8 is to test.
 ///
 /// \section ch07_try What to try
 ///
-///  - `--noise 0.01` and `--noise 0.3`: every error in Fig 2 grows in proportion, and
-///    Brookshaw's stays thirteen times Watkins'.  With `--noise 0` Fig 2 is Fig 1.
+///  - `--noise 0.01` and `--noise 0.3`: at 0.3 every error is about three times that at 0.1, and
+///    Brookshaw's stays 13-14 times Watkins'; at 0.01 Watkins' error is mostly the noise-free one
+///    (Step 3's sweep: 0.047 against 0.043 without noise), and Brookshaw's is only 5-6 times it.
+///    With `--noise 0` Fig 2 is Fig 1.
 ///  - `--neighbours-3d 30`, then `120`: with fewer neighbours Flebbe falls apart first (its
 ///    zeroth-order error is largest when few neighbours balance each other); with more, every
 ///    method smooths the peak more, Brookshaw least.
