@@ -34,8 +34,8 @@
 ///
 /// The program has seven steps, each a function below with its own heading, and `main` at the
 /// end calls them in order:
-///  1. Sod's tube at the resolution of the papers' 1D tests (450 particles in the window
-///     \f$ -0.5 \le x \le 0.5 \f$), run three times: without viscosity, with the
+///  1. Sod's tube at the resolution at which chapter 4 meets a mature code (450 particles in
+///     the window \f$ -0.5 \le x \le 0.5 \f$), run three times: without viscosity, with the
 ///     Monaghan-Gingold viscosity, and with eq 4 as printed;
 ///  2. the \f$ L_1 \f$ errors of the three runs, and how well each conserves energy and
 ///     momentum;
@@ -93,9 +93,9 @@
 /// \f[ \frac{du_i}{dt} = \frac12 \sum_j m_j \left( \frac{P_i}{\rho_i^2} + \frac{P_j}{\rho_j^2}
 ///       \right) \mathbf v_{ij}\cdot\nabla_i W(r_{ij}, \bar h_{ij}) . \f]
 /// For an approaching pair \f$ \mathbf v_{ij}\cdot\nabla_i W_{ij} = W'\,\mathbf r_{ij}\cdot
-/// \mathbf v_{ij}/r_{ij} > 0 \f$: compression heats, as it should.  The work the pair force
-/// does on the relative motion, \f$ -m_i m_j(\dots)\,\mathbf v_{ij}\cdot\nabla_i W_{ij} \f$, is
-/// exactly what the two particles gain in internal energy, so
+/// \mathbf v_{ij}/r_{ij} > 0 \f$: compression heats, as it should.  The kinetic energy the pair
+/// force takes from the relative motion, \f$ m_i m_j(\dots)\,\mathbf v_{ij}\cdot\nabla_i W_{ij}
+/// \f$, is exactly what the two particles gain in internal energy, so
 /// \f$ E = \sum_i m_i (\tfrac12 v_i^2 + u_i) \f$ is conserved by the equations; the time
 /// integration conserves it to \f$ O(\delta t^2) \f$, and we check that too.
 ///
@@ -146,14 +146,16 @@
 /// \f[ \delta t = \min_i \frac{\varepsilon h_i}{|\mathbf v_i| + c_i
 ///       + 1.2(\alpha c_i + \beta\mu_{i,\max})}, \f]
 /// in which the viscous term vanishes for the inviscid runs (\f$ \alpha = \beta = 0 \f$), plus
-/// the limit \f$ \varepsilon\sqrt{h_i/|\mathbf a_i|} \f$ on the acceleration.  The idea behind
-/// eq 7 is the Courant condition of every explicit scheme: in one step no signal -- the
-/// particle itself, a sound wave, the viscous response -- may travel more than a fraction
-/// \f$ \varepsilon \f$ of a smoothing length, or the particles would react to a neighbour
-/// that is no longer where its force was computed.  One step for all particles, the smallest
-/// of the limits, is what the papers use, and it is what makes the leapfrog's error analysis
-/// hold: the scheme is second order in \f$ \delta t \f$, so halving the step should cut the
-/// energy error of Step 2 about fourfold (`--courant`; the results page tries it).
+/// the limits \f$ \varepsilon\sqrt{h_i/|\mathbf a_i|} \f$ on the acceleration and
+/// \f$ \varepsilon\, u_i/|\dot u_i| \f$ on the cooling, where \f$ \dot u_i < 0 \f$.  The idea
+/// behind eq 7 is the Courant condition of every explicit scheme: in one step no signal -- the
+/// particle itself, a sound wave, the viscous response -- may travel more than a fraction \f$
+/// \varepsilon \f$ of a smoothing length, or the particles would react to a neighbour that is no
+/// longer where its force was computed.  One step for all particles, the smallest of the limits, is
+/// what the papers use, and it is what makes the leapfrog's error analysis hold: the scheme is
+/// second order in \f$ \delta t \f$, so halving the step should cut the energy error of Step 2
+/// about fourfold (`--courant`; the results page tries it: the viscous run's falls 3.3-fold, the
+/// two noisy inviscid ones' 7-8-fold, their noise itself changing with the step).
 ///
 /// \section ch03_h The smoothing length in 1D
 ///
@@ -618,10 +620,11 @@ ErrorTable step2_errors(const SodRuns& runs, const Parameters& par) {
 /// is only as good as the discrete equations are adiabatic, and in the noise behind an
 /// inviscid shock, where neighbours differ strongly, the two approximations noted above are no
 /// longer small: they move heat between particles and can also create some.  With
-/// \f$ h = \Delta x \f$ we find the post-shock gas on its adiabat and the energy budget nearly
-/// closed; with \f$ h = 1.2\Delta x \f$ (`--neighbours 4.8`) the post-shock gas ends up near the
-/// shock's u, yet still rings at over 40 % of \f$ u_* \f$.  What does not depend on h is that
-/// nothing in the inviscid equations damps the ringing.
+/// \f$ h = \Delta x \f$ we find the post-shock gas's mean u at the adiabat's value (for the exact
+/// post-shock density) and the energy budget nearly closed; with \f$ h = 1.2\Delta x \f$
+/// (`--neighbours 4.8`) the post-shock gas ends up near the shock's u, yet still rings at over 40 %
+/// of \f$ u_* \f$.  What does not depend on h is that nothing in the inviscid equations damps the
+/// ringing.
 ///
 /// In code, the margin is four smoothing lengths of the post-shock gas, computed from a
 /// particle's mass and \f$ \rho_{*R} \f$ with the 1D rule \f$ h = N m/(4\rho) \f$; the
@@ -679,19 +682,19 @@ StarRegion star_region(const app::TubeRun<D>& run, const SodScene& scene) {
 /// \f$ \tfrac12 \langle (v - u_*)^2 \rangle \f$.
 ///
 /// What to look for.  Without viscosity the ringing is about half of \f$ u_* \f$ and the mean u of
-/// the post-shock gas sits on the adiabat, not on the Hugoniot value; the two numbers of the heat
-/// budget are close to each other, which is the energy argument above in figures.  At the
-/// default resolution the ringing is 0.5094, 54.92 % of \f$ u_* \f$, near the predicted 0.55;
-/// the mean u is 2.7058, against 2.7036 on the adiabat; and of the 0.1478 of heat missing per
-/// unit mass, 0.1297 is the kinetic energy of the ringing.  With viscosity the ringing is four
-/// orders of magnitude smaller, \f$ p_* \f$ is right to a fraction of a per cent, and u has
-/// reached the Hugoniot value: the viscosity has turned the kinetic energy into
-/// heat, which is what a shock does.  The two numbers of the inviscid heat budget need not agree
-/// exactly: what the ringing's kinetic energy does not account for has been made into heat after
-/// all, by the approximations of the discrete energy equation that the energy section described,
-/// and with \f$ h = \Delta x \f$ that share is small.  The window holds only some thirty particles
-/// at this resolution, so these are estimates from a small sample; Step 7 looks at the same failure
-/// with the error norms over the whole window.
+/// the post-shock gas sits at the adiabat's value, not at the Hugoniot's; the two numbers of the
+/// heat budget are close to each other, which is the energy argument above in figures.  At the
+/// default resolution the ringing is 0.5094, 54.92 % of \f$ u_* \f$, near the predicted 0.55; the
+/// mean u is 2.7058, against 2.7036 on the adiabat; and of the 0.1478 of heat missing per unit
+/// mass, 0.1297 is the kinetic energy of the ringing.  With viscosity the ringing is four orders of
+/// magnitude smaller, \f$ p_* \f$ is right to a fraction of a per cent, and u has reached the
+/// Hugoniot value: the viscosity has turned the kinetic energy into heat, which is what a shock
+/// does.  The two numbers of the inviscid heat budget need not agree exactly: what the ringing's
+/// kinetic energy does not account for has been made into heat after all, by the approximations of
+/// the discrete energy equation that the energy section described, and with \f$ h = \Delta x \f$
+/// that share is small.  The window holds only some thirty particles at this resolution, so these
+/// are estimates from a small sample; Step 7 looks at the same failure with the error norms over
+/// the whole window.
 
 struct StarTable {
   StarRegion inviscid, viscous;
@@ -925,8 +928,9 @@ void step5_figures(const app::Chapter& chapter, const SodRuns& runs, const StarT
 /// What SPH does instead depends on how close two particles may come.  The pressure force
 /// between two particles is proportional to the kernel gradient, which *vanishes* at zero
 /// separation (chapter 1).  If the smoothing length stays near its initial value --
-/// Selhammar's rule, a fixed number of neighbours (here 5: \f$ 2h \f$ half-way between the 5th
-/// and 6th neighbour, \f$ h = 1.5\Delta x \f$ on the initial lattice) -- the density of an
+/// Selhammar's rule, a fixed number of neighbours (here 5; on the initial lattice the 5th and
+/// 6th neighbours lie on one shell, so \f$ 2h \f$ goes just outside it, half-way to the next:
+/// \f$ h = 1.75\Delta x \f$, with 6 neighbours inside \f$ 2h \f$) -- the density of an
 /// approaching pair stays finite, the barrier between them is finite, and a fast particle
 /// simply goes through.  The streams **interpenetrate**, and the gas between the shocks is two
 /// streams on top of each other with density 2, not a shocked gas at rest with density 4.
@@ -941,7 +945,7 @@ void step5_figures(const app::Chapter& chapter, const SodRuns& runs, const StarT
 /// The exact density between the shocks follows from mass conservation across each shock.  A shock
 /// moving outwards at speed s sweeps up gas arriving at \f$ v_0 \f$, so
 /// \f$ \rho_0 (v_0 + s) = \rho_2 s \f$ and \f$ \rho_2/\rho_0 = 1 + v_0/s \f$: 4 for the
-/// strong-shock speed \f$ s = 1/3 \f$, and 3.92 at Mach 10, where the gas in front is not quite
+/// strong-shock speed \f$ s = 1/3 \f$, and 3.93 at Mach 10, where the gas in front is not quite
 /// cold, the compression falls a little short of 4, and the shock runs a little faster,
 /// \f$ s = 0.34 \f$.  In SPH the first particles to meet are compressed and heated by the viscosity
 /// before any shock has formed, more than the shock heats the gas that follows; they end up hotter
@@ -977,7 +981,7 @@ app::StreamsRun<dim> run_streams(const std::string& name, const StreamsScene& sc
 /// order -- catch any local overturning, but two streams that pass through each other keep
 /// their own order: only the one pair that met first is adjacent and inverted.  *All*
 /// inversions count every pair that has crossed, and grow like the square of the overlap; with
-/// n particles per stream that have passed each other there are about \f$ n^2 \f$ of them.
+/// n particles per stream that have passed each other there are about \f$ n^2/2 \f$ of them.
 /// The deepest penetration, the furthest any particle has gone past one that started ahead of
 /// it, is the third number: for streams that never stop it is \f$ 2 v_0 t \f$.
 ///
@@ -1002,8 +1006,9 @@ app::StreamsRun<dim> run_streams(const std::string& name, const StreamsScene& sc
 ///
 /// What to look for.  In the first run the number of inverted pairs is large -- thousands --
 /// while the adjacent count is 1, and the deepest penetration is about \f$ 2 v_0 t = 0.8 \f$,
-/// as far as a particle can travel: the front particles of each stream have not been slowed
-/// at all.  Its highest density is about 2, two streams superposed.  The second run has no
+/// as far as an unhindered particle travels: the front particles of each stream have not been
+/// slowed at all (the pressure of the overlap even pushes them a few per cent faster).  Its
+/// highest density is about 2, two streams superposed.  The second run has no
 /// inversion, but it stops early with its step budget spent, a density in the thousands and a
 /// last time step some \f$ 10^{-7} \f$: the adiabatic pile-up.  How far that collapse has
 /// gone when the budget runs out depends on round-off, so those numbers may differ from one
@@ -1089,7 +1094,8 @@ StreamRuns<dim> step6_colliding_streams(const app::Chapter& chapter, const Param
 /// We already know what to expect without viscosity.  Nothing damps the ringing, and its
 /// amplitude is set by the energy budget of the shock, \f$ \sim\sqrt{2\Delta u} \f$, not by the
 /// resolution; more particles only sample the same noise more finely, and the region it
-/// fills, between the contact and the shock, does not shrink either.  So the inviscid
+/// fills, from the rarefaction's tail to the shock (sound waves carry it back across the
+/// contact), does not shrink either.  So the inviscid
 /// \f$ L_1 \f$ error should stay where it is however many particles we pay for.  With
 /// viscosity, the shock is a smooth transition a few h wide, and the error should fall as
 /// \f$ \Delta x^1 \f$.
@@ -1216,9 +1222,9 @@ sph::ErrorVsTime step7_error_against_run_time(const app::Chapter& chapter, const
 ///  - 10 % of \f$ u_* \f$ for the ringing is a fifth of what the inviscid run shows, and a
 ///    factor ten between the two runs, where the measurement gives thousands, leaves no doubt;
 ///  - 20 % for the printed fronts is two thirds of the third by which they are slow, and the
-///    0.01 and 0.02 allowed from the predicted fronts are of the size of the inviscid run's
-///    distance from Sod's;
-///  - for the streams, ten initial spacings of penetration, some seven smoothing lengths, is far
+///    0.01 and 0.02 allowed from the predicted fronts are ten times the printed run's head
+///    offset (0.0010) and twice the inviscid shock's lag (0.0088);
+///  - for the streams, ten initial spacings of penetration, nearly six smoothing lengths, is far
 ///    more than the shuffling within a kernel that a shock may cause; passing streams reach 160;
 ///  - the orders 0.3 and 0.7 split the fitted orders, near zero and near one, with room on
 ///    both sides for the scatter of a fit over three `--quick` levels.
@@ -1313,9 +1319,9 @@ void check_claims(app::Chapter& chapter, const Findings& f) {
 /// as `build/chapters/ch03_equations_of_motion --output DIR`, the program writes the figures, the
 /// SPLASH snapshots and `summary.txt` into DIR (without `--output`, into
 /// `figures/03-equations-of-motion` of the source tree, where the pages of this book find them),
-/// and its report on standard output; at the default resolution it takes some ten seconds on two
-/// cores, most of them in the sweep of Step 7 and the pile-up run of Step 6.  app::run_main turns
-/// anything that goes wrong (a bad option value, a run that cannot go on) into a message on
+/// and its report on standard output; at the default resolution it takes some fifteen seconds on
+/// two cores, most of them in the sweep of Step 7 and the pile-up run of Step 6.  app::run_main
+/// turns anything that goes wrong (a bad option value, a run that cannot go on) into a message on
 /// standard error and a non-zero exit status.
 
 int main(int argc, char** argv) {
