@@ -49,8 +49,10 @@
 /// Since \f$ \mu_{ij} < 0 \f$ for an approaching pair, both terms are positive: they add to the
 /// pressure between particles that run into each other, and nothing else.
 ///
-/// - The \f$ \alpha \f$ term is linear in the approach speed: a bulk viscosity with kinematic
-///   coefficient \f$ \sim \alpha c h \f$.  It damps the post-shock ringing of chapter 3.
+/// - The \f$ \alpha \f$ term is linear in the approach speed: in the continuum limit a bulk
+///   *and* a shear viscosity, each with a kinematic coefficient of about \f$ \alpha c h/8 \f$
+///   (Watkins et al. 1996, sect. 4.3.1); a 1D tube sees only the compressive part.  It damps the
+///   post-shock ringing of chapter 3.
 /// - The \f$ \beta \f$ term is quadratic, the von Neumann-Richtmyer viscosity of grid codes.
 ///   It dominates in strong shocks and is what stops particles passing through each other.
 /// - \f$ \nu^2 = 0.01\,\bar h_{ij}^2 \f$ keeps \f$ \mu \f$ finite for close pairs.  Selhammar
@@ -64,8 +66,10 @@
 /// pressure \f$ \rho\Pi \f$ that the bracket adds is then
 /// \f[ \rho\,\Pi \sim -\alpha\,\rho\, c\, h\, \nabla\cdot\mathbf v
 ///       + \beta\,\rho\, h^2 (\nabla\cdot\mathbf v)^2 , \f]
-/// a bulk viscosity with the coefficient \f$ \alpha\rho c h \f$, and the quadratic pressure of
-/// von Neumann and Richtmyer.  Both vanish as \f$ h \to 0 \f$ in a smooth flow, so the
+/// a bulk viscosity with a coefficient of order \f$ \alpha\rho c h \f$ (the order of magnitude
+/// only: worked out over the kernel it is about an eighth of that, with a shear viscosity of the
+/// same size beside it, as Watkins et al. show), and the quadratic pressure of von Neumann and
+/// Richtmyer.  Both vanish as \f$ h \to 0 \f$ in a smooth flow, so the
 /// viscous equations converge to the Euler equations; in a shock, where
 /// \f$ \nabla\cdot\mathbf v \f$ is as large as the jump in v divided by the shock's width, the
 /// extra pressure is large enough to carry the jump in momentum flux across that width.  That
@@ -89,10 +93,10 @@
 /// How much does \f$ \nu^2 \f$ matter?  It competes with \f$ r_{ij}^2 \f$ in the denominator of
 /// \f$ \mu_{ij} \f$: for neighbours one smoothing length apart, Monaghan's
 /// \f$ \nu^2 = 0.01\,h^2 \f$ lowers \f$ \mu \f$ by one per cent and Selhammar's by a hundredth
-/// of that, and only pairs much closer than h feel the difference strongly.  In a shock tube,
-/// where neighbours sit about \f$ \Delta x \approx h \f$ apart, the choice moves the errors of
-/// this chapter by a fraction of a per cent.  It can matter only where particles come much
-/// closer than h, as they do in the colliding streams of chapter 3.
+/// of that, and only pairs much closer than h feel the difference strongly.  In a shock tube, where
+/// neighbours sit about \f$ \Delta x \approx h \f$ apart, the choice moves the errors of this
+/// chapter by at most 2 % (under 1 % in Step 1; the results page runs `--nu2 1e-4`).  It can matter
+/// only where particles come much closer than h, as they do in the colliding streams of chapter 3.
 ///
 /// In code, the whole term is one pure pair function that adds \f$ \Pi_{ij} \f$ to the bracket
 /// (lib/sph/viscosity/monaghan_gingold_1983.hpp), and a scene chooses it at compile time by
@@ -451,8 +455,8 @@ void print_headline(const Parameters& par) {
 /// \f$ L_1(\rho) \f$ of each with a target we set ourselves, 0.003 at 450 particles and 0.001
 /// at 1800, and print beside it the error a reference SPH code reaches at about the same
 /// numbers of particles.  A first-order scheme should cut the error by four between the two
-/// resolutions, so the targets are not independent: the finer one asks for slightly better
-/// than first order from the coarser.
+/// resolutions, so the targets are not independent: the finer one asks for a little less than
+/// first order from the coarser (a factor three, order 0.8).
 ///
 /// The coarser run is, to the last digit, chapter 3's viscous run: the same scene, the same set-up,
 /// the same runner, and the same step count, 1393.  (Chapter 3 counts the particles in the window
@@ -572,7 +576,7 @@ Sod1D step1_sod_1d(const app::Chapter& chapter, const Parameters& par) {
 /// the **gradient**: the SPH estimate of \f$ \partial P/\partial x \f$ for a linear pressure on
 /// a lattice is
 /// \f[ \left.\frac{\partial P}{\partial x}\right|_{\rm SPH} = \frac{\partial P}{\partial x}\;
-///     \underbrace{\sum_j \Delta x\,(x_i - x_j)\,
+///     \underbrace{\sum_j \Delta x\,(x_j - x_i)\,
 ///       \frac{\partial W}{\partial x}(x_i - x_j)}_{S(\eta)}, \f]
 /// and for the M4 kernel at \f$ \eta = 1.2 \f$ the lattice sum is \f$ S = 1.022 \f$: every
 /// pressure force is 2.2 % too strong.  Sound then travels about 1.1 % too fast, the rarefaction
@@ -601,7 +605,7 @@ Sod1D step1_sod_1d(const app::Chapter& chapter, const Parameters& par) {
 
 struct LatticeSums {
   double density;   // sum_j dx W(x_j, h) on a unit lattice
-  double gradient;  // sum_j dx (x_i - x_j) dW/dx: 1 for an exact gradient
+  double gradient;  // sum_j dx (x_j - x_i) dW/dx(x_i - x_j): 1 for an exact gradient
 };
 
 LatticeSums lattice_sums_1d(double eta) {
@@ -623,12 +627,13 @@ LatticeSums lattice_sums_1d(double eta) {
 ///
 /// What to look for.  The gradient sum departs from one ten times more than the density sum, by 2.2
 /// % at \f$ \eta = 1.2 \f$ against 0.18 %; it crosses one between 1.4 and 1.5 and is exactly one at
-/// 1 and 2.  The error is smallest at \f$ \eta = 1 \f$ and about 70 % larger at 1.2: it follows
-/// \f$ |S - 1| \f$, not the neighbour number.  At \f$ \eta = 2 \f$ both sums are exact again, but
+/// 1 and 2.  The error is smallest at \f$ \eta = 1 \f$ and about 70 % larger at 1.2: up to
+/// \f$ \eta \approx 1.6 \f$ it follows \f$ |S - 1| \f$, not the neighbour number; beyond, the
+/// growing kernel width takes over.  At \f$ \eta = 2 \f$ both sums are exact again, but
 /// the error is not back to its minimum: there the kernel smooths over twice the distance, and the
 /// shock and contact are twice as wide.  Exactness of the lattice sums is necessary for the
 /// smallest error, not sufficient.  Read down the columns too: the density sum never strays more
-/// than 0.45 % from one, the gradient sum up to 2.4 %, and the velocity error rises and falls with
+/// than 0.45 % from one, the gradient sum up to 2.3 %, and the velocity error rises and falls with
 /// the density error, as it should if both come from the same misplaced rarefaction.
 ///
 /// In code, \f$ \eta \f$ enters the run through the smoothing-length rule alone: h from the
@@ -1069,12 +1074,12 @@ double step5_error_against_run_time(const app::Chapter& chapter, const Parameter
 ///
 /// Steps 1 and 5 run the tube the way chapter 3 taught it, and that way spends CPU seconds the
 /// other code does not: our periodic tube holds twice the window's particles, and Selhammar's eq 7
-/// takes 2.1 to 2.5 times the other code's steps.  Two levers remove that; a third removes the
-/// error floor that \f$ h = 1.2\Delta x \f$ puts under our runs and not under the other code's.
-/// This step builds all three and races the result against the quoted numbers.  Each lever is
-/// also an option of the program that a reader can switch on for the other steps' Sod tubes
-/// (`--signal-velocity` with `--courant`, `--walls`, `--grad-h`); "What to try" gives what each
-/// does to Step 1.
+/// takes 2.0 to 2.1 times the other code's steps at the same \f$ h/\Delta x \f$.  Two levers remove
+/// that; a third removes the error floor that \f$ h = 1.2\Delta x \f$ puts under our runs and not
+/// under the other code's velocity error.  This step builds all three and races the result against
+/// the quoted numbers.  Each lever is also an option of the program that a reader can switch on for
+/// the other steps' Sod tubes (`--signal-velocity` with `--courant`, `--walls`, `--grad-h`); "What
+/// to try" gives what each does to Step 1.
 ///
 /// **Lever 1: the time step.**  Eq 7 puts \f$ |\mathbf v_i| \f$ and the viscosity's
 /// \f$ 1.2(\alpha c_i + \beta\mu_{i,\max}) \f$ into every particle's signal speed, moving or not.
@@ -1487,7 +1492,7 @@ Race step6_fair_race(const app::Chapter& chapter, const Parameters& par) {
 ///     \f$ 10^{-3} \f$ of themselves (Step 6).  The race itself is reported, not checked: its
 ///     times depend on the machine.
 ///
-/// Where do the thresholds come from?  The 1D targets are the ones of Step 1, first order
+/// Where do the thresholds come from?  The 1D targets are the ones of Step 1, an order of 0.8
 /// between them.  The 3 % on the 3D plateau leaves room above the 1.7 % a glass start reaches
 /// at the default resolution; the 10 % on the lattice start
 /// is a third of the stall it shows, so the check fails only if the stall has gone, not if it
