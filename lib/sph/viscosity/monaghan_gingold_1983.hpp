@@ -7,13 +7,13 @@
 ///     \mu_{ij} = \frac{\bar h_{ij}\; \mathbf r_{ij}\cdot\mathbf v_{ij}}{r_{ij}^2 + \nu^2}
 ///     \quad\text{if } \mathbf r_{ij}\cdot\mathbf v_{ij} < 0, \text{ else } \Pi_{ij} = 0, \f]
 /// with \f$ \bar c_{ij} \f$ and \f$ \bar\rho_{ij} \f$ the pair means.  The \f$ \alpha \f$ term
-/// is a bulk viscosity (linear in the approach speed), the \f$ \beta \f$ term the von
-/// Neumann-Richtmyer viscosity (quadratic), which stops particles passing through each other in
-/// strong shocks.  \f$ \nu^2 = \epsilon_\nu \bar h_{ij}^2 \f$ keeps \f$ \mu \f$ finite for
-/// close pairs.  The papers differ here (see the page 'Reading the two papers',
-/// docs/papers.md): Monaghan and Watkins use \f$ \epsilon_\nu = 0.01 \f$; Selhammar writes
-/// \f$ \nu = 0.01h \f$, i.e. \f$ \epsilon_\nu = 10^{-4} \f$.  We expose it and default to
-/// the Monaghan/Watkins value.
+/// is linear in the approach speed (in the continuum limit a bulk and a shear viscosity, each of
+/// kinematic coefficient about \f$ \alpha c h/8 \f$: Watkins et al. 1996), the \f$ \beta \f$ term
+/// the von Neumann-Richtmyer viscosity (quadratic), which stops particles passing through each
+/// other in strong shocks.  \f$ \nu^2 = \epsilon_\nu \bar h_{ij}^2 \f$ keeps \f$ \mu \f$ finite for
+/// close pairs.  The papers differ here (see the page 'Reading the two papers', docs/papers.md):
+/// Monaghan and Watkins use \f$ \epsilon_\nu = 0.01 \f$; Selhammar writes \f$ \nu = 0.01h \f$, i.e.
+/// \f$ \epsilon_\nu = 10^{-4} \f$.  We expose it and default to the Monaghan/Watkins value.
 
 #include "sph/error.hpp"
 #include "sph/fields.hpp"
