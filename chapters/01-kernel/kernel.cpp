@@ -61,7 +61,8 @@
 /// the library's table (`lib/sph/kernel.hpp`), Selhammar's eq 3 and Watkins' eq A3 all agree.
 ///
 /// For comparison we carry the Wendland (1995) C2 kernel, scaled to the same support
-/// \f$ 2h \f$.  It is smoother at the origin and -- the property that matters -- its Fourier
+/// \f$ 2h \f$.  It is as smooth as the M4 (twice differentiable) and -- the property that
+/// matters -- its Fourier
 /// transform is positive in every dimension, which protects it from the *pairing instability*
 /// that afflicts the M4 at large neighbour numbers (Dehnen & Aly 2012).  We shall see the
 /// M4's negative Fourier lobe in 3D below.
@@ -229,9 +230,11 @@ double worst_gradient_error(int samples) {
 /// digit: the quadrature, the library and the papers are the same kernel.  A column
 /// \f$ \int W\,dV - 1 \f$ of round-off (\f$ 10^{-15} \f$ to \f$ 10^{-12} \f$): the integral was
 /// taken of the dimensional \f$ W(r, h) \f$ at \f$ h = 0.37 \f$, so the library's
-/// \f$ h^{-D} \f$ is tested as well as its shape.  A gradient error of \f$ 3\cdot 10^{-7} \f$ in
-/// every row -- suspiciously the same for both kernels, because it is the finite difference's
-/// error, not the kernel's (the results explain it).  And the last column, which is different
+/// \f$ h^{-D} \f$ is tested as well as its shape.  A gradient error of 1 to
+/// \f$ 3\cdot 10^{-7} \f$ in every row, the same for any `--intervals`, because it is the finite
+/// difference's error, not the kernel's (the results explain it): \f$ 3.3\cdot 10^{-7} \f$
+/// wherever the kernel ends as \f$ (2-q)^3 \f$ (the M4, the C2 in 1D), \f$ 1.25\cdot 10^{-7} \f$
+/// for the C2's \f$ (2-q)^4 \f$ ending in 2D and 3D.  And the last column, which is different
 /// for the two kernels at the same h: they do not smooth equally.
 ///
 /// The reference values in the table below are typed as the papers print them, not as the
@@ -335,7 +338,8 @@ void step4_normalisation_table(app::Chapter& chapter, int intervals) {
 /// from the pairing instability (a negative value means it is not, at large enough neighbour
 /// numbers).
 ///
-/// <b>What to look for.</b>  A 1D difference of round-off size, \f$ 10^{-12} \f$ or less; a 3D
+/// <b>What to look for.</b>  A 1D difference far below the check's \f$ 10^{-9} \f$: round-off
+/// (\f$ 10^{-14} \f$) at the default 2000 intervals, a few \f$ 10^{-12} \f$ with `--quick`; a 3D
 /// minimum below zero for the M4, near \f$ kh \approx 8 \f$, and a positive one for the
 /// Wendland C2.
 ///
@@ -399,10 +403,11 @@ Lobe step5_transform_measured(app::Chapter& chapter, int intervals) {
 /// (d) the tail of the Fourier transform, magnified, where the M4 goes negative in 3D and the
 /// Wendland C2 does not.
 ///
-/// <b>What to look for.</b>  In (a), how much lower and wider the kernel is in 3D than in 1D at
-/// the same h (the \f$ h^{-D} \f$ and \f$ \sigma_D \f$ spread the same unit integral over more
-/// volume); in (c), that the 3D curves vanish at the centre; in (d), the blue solid curve dipping
-/// below the dotted zero line while the blue dashed one stays above it.
+/// <b>What to look for.</b>  In (a), that the M4 has the same shape in every dimension and only its
+/// height \f$ \sigma_D \f$ changes (0.67, 0.45, 0.32): the same unit integral is spread over more
+/// volume, since a shell's volume grows as \f$ q^{D-1} \f$; in (c), that the 3D curves vanish at
+/// the centre; in (d), the blue solid curve dipping below the dotted zero line while the blue
+/// dashed one stays above it.
 ///
 /// The step samples each kernel at \f$ h = 1 \f$ over \f$ 0 \le q \le 2.2 \f$, a little past the
 /// support so that each curve is seen to arrive at zero and stay there, and each transform over
@@ -444,8 +449,9 @@ void step6_figure(const app::Chapter& chapter, int intervals, int samples, const
 /// Every check compares a number with its exact value and a stated tolerance.  The
 /// tolerances are not arbitrary:
 ///  - \f$ \int W\,dV = 1 \f$ to \f$ 10^{-10} \f$: Simpson's rule with 400 or more intervals per
-///    kernel piece is accurate to about \f$ 10^{-11} \f$ for the quintic and septic integrands of
-///    the 3D moments, and round-off is \f$ 10^{-14} \f$; a wrong normalisation would be off by
+///    kernel piece is accurate to about \f$ 10^{-11} \f$ for the worst integrands, those of the
+///    2D rows and of the Wendland C2 (the M4's 1D and 3D integrands are integrated exactly), and
+///    round-off is \f$ 10^{-14} \f$; a wrong normalisation would be off by
 ///    a rational factor, not by \f$ 10^{-10} \f$.
 ///  - the library's \f$ \sigma_D \f$ equals the papers' to \f$ 10^{-14} \f$: both are the same
 ///    fraction of \f$ \pi \f$ computed in double precision.
@@ -479,7 +485,7 @@ int main(int argc, char** argv) {
   return app::run_main([&] {
     app::Chapter chapter("01-kernel", "Chapter 1: The smoothing kernel", argc, argv);
     int intervals = 2000;
-    // (the cost grows with the intervals: 20000 takes some ten seconds, 200000 minutes)
+    // (the cost grows with the intervals: 20000, the largest allowed, takes some ten seconds)
     chapter.parameter("--intervals", intervals, "Simpson intervals per kernel piece (even)", 400)
         .check(app::between(2, 20000))
         ->check(app::require<int>([](int n) { return n % 2 == 0; }, "must be even"));

@@ -407,8 +407,8 @@ void draw_watkins_figure(app::Chapter& chapter, const Setup& s, const RandomSets
 /// +0.18 % at the common \f$ \eta = 1.2 \f$, zero at \f$ \eta = 1 \f$ and \f$ \eta = 2 \f$ (where
 /// the B-spline's knots fall on the particles), and bounded by \f$ 2\zeta(4)/(\pi\eta)^4 \approx
 /// 2.2/(\pi\eta)^4 \f$ in between.  In 2D and 3D the M4 is not a product of 1D splines, there
-/// are no exact zeros, and \f$ \hat W \f$ can be negative (chapter 1, Fig. d), so the bias can
-/// take either sign.
+/// are no zeros fixed by the knots (only where a curve happens to cross zero), and \f$ \hat W \f$
+/// can be negative (chapter 1, Fig. d), so the bias can take either sign.
 ///
 /// Which wavenumbers enter depends on the lattice.  For the cubic lattice of spacing a the
 /// reciprocal vectors are \f$ 2\pi\mathbf n/a \f$ with integer \f$ \mathbf n \f$: six shortest ones
@@ -777,9 +777,9 @@ void step6_rules(app::Chapter& chapter, const Setup& s, const Settled& glass,
 ///
 /// What should the time be?  The search visits, for each particle, the cells overlapping a cube
 /// around it (cells half the search radius R wide, so \f$ 5^3 \f$ of them, a cube of side
-/// \f$ 2.5R \f$) and tests every particle in them.  With \f$ R = 1.1 \times 2h \f$ (a 10 % margin,
+/// \f$ 2.5R \f$) and tests every particle in them.  With \f$ R = 1.2 \times 2h \f$ (a 20 % margin,
 /// so that the neighbour-number rule can move h without searching again) that is
-/// \f$ 2.5^3 \cdot 1.1^3 / \tfrac43\pi \approx 5 \f$ candidates per neighbour.  The density
+/// \f$ 2.5^3 \cdot 1.2^3 / \tfrac43\pi \approx 6 \f$ candidates per neighbour.  The density
 /// pass then evaluates one kernel per neighbour.  Both grow as \f$ N\, N_{\rm ngb} \f$; what
 /// does not is the fixed work per particle and per cell visited, so the time per neighbour
 /// falls as the kernel fills.  The benchmark program
@@ -790,10 +790,11 @@ void step6_rules(app::Chapter& chapter, const Setup& s, const Settled& glass,
 /// <b>What to look for.</b>  The lattice rows: the same error at every N (order 0), because
 /// the error is the bias of Step 4, which depends on \f$ \eta \f$ alone.  The glass rows: an
 /// error that falls with the neighbour number (0.6 %, 0.3 %, 0.13 % at 32, 64, 128) but not with
-/// N at fixed neighbours.  And the times: proportional to N, and growing by a factor of 1.4 to
-/// 2.6 with each doubling of the neighbour number (2.0, then 1.6, at N = 32768): on the whole
-/// less than the doubling of the pairs, since the search's cost per particle does not all scale
-/// with the kernel, and scattered, since the shortest runs take milliseconds.
+/// N at fixed neighbours.  And the times: roughly proportional to N (fitted slopes 1.1-1.2), and
+/// growing by a factor of 1.3 to 2.8 with each doubling of the neighbour number (2.0, then 1.6, at
+/// N = 32768): on the whole less than the doubling of the pairs, since the search's cost per
+/// particle does not all scale with the kernel, and scattered, since the shortest runs take
+/// milliseconds.
 
 /// The sweep is `app::run_density_cost_sweep` (`lib/app/density/density_timing.hpp`).  It runs on
 /// one thread, so that the times compare across N even on a shared machine (the smallest sets,
