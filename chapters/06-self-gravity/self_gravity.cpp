@@ -478,12 +478,19 @@ struct TreeStudy {
   std::vector<double> direct_seconds, tree_seconds;  // per evaluation; direct < 0: not run
   double momentum = 0;                               // |sum m a| / sum m|a| of the default tree
   double direct_seconds_8k = 0;
-  // the random uniform sphere of the tests: theta = 0.3, 0.5, the relative criterion at its
-  // default alpha, and the chapter's tree
-  std::vector<app::TreeAccuracy> uniform;
-  app::TreeAccuracy uniform_default;
-  std::size_t uniform_particles = 0;
+  app::TreeAccuracy uniform_default;  // the chapter's tree on the random uniform sphere
 };
+
+// The chapter's tree among \p rows, or \p measure()'s if it is not one of them.
+template <class Measure>
+app::TreeAccuracy chapters_tree(const std::vector<app::TreeAccuracy>& rows, const Parameters& par,
+                                Measure&& measure) {
+  const auto row = std::find_if(rows.begin(), rows.end(), [&](const auto& r) {
+    return r.alpha == par.relative && (r.alpha > 0 || r.theta == par.theta) &&
+           r.quadrupole == !par.monopole;
+  });
+  return row != rows.end() ? *row : measure();
+}
 
 app::TreeAccuracy measure_tree(const sph::Particles<3>& p, const app::GravityField& exact,
                                double theta, bool quadrupole, double direct_seconds,
@@ -550,14 +557,9 @@ TreeStudy step2_tree(const app::Chapter& chapter, const Parameters& par) {
     study.rows.push_back(measure_tree(p, exact, par.theta, true, direct, alpha));
     print_row("", study.rows.back());
   }
-  // the chapter's tree: a row of the table, or measured if it is not one
-  const auto at_default = std::find_if(study.rows.begin(), study.rows.end(), [&](const auto& r) {
-    return r.alpha == par.relative && (r.alpha > 0 || r.theta == par.theta) &&
-           r.quadrupole == !par.monopole;
+  study.at_default = chapters_tree(study.rows, par, [&] {
+    return measure_tree(p, exact, par.theta, !par.monopole, direct, par.relative);
   });
-  study.at_default = at_default != study.rows.end()
-                         ? *at_default
-                         : measure_tree(p, exact, par.theta, !par.monopole, direct, par.relative);
   const app::TreeAccuracy& d = study.at_default;
   study.momentum = d.net_force;
   const std::string criterion = d.alpha > 0 ? app::format("relative, alpha = %.2g", d.alpha)
@@ -575,18 +577,19 @@ TreeStudy step2_tree(const app::Chapter& chapter, const Parameters& par) {
   app::GravityField ball_exact;
   const double ball_direct =
       app::median_seconds(1, [&] { ball_exact = app::gravity_alone(sph::DirectGravity{}, ball); });
-  study.uniform_particles = ball.size();
   std::printf("  the random uniform sphere of the tests, %zu particles (h for 64 neighbours):\n",
               ball.size());
+  std::vector<app::TreeAccuracy> uniform;
   for (double theta : {0.3, 0.5}) {
-    study.uniform.push_back(measure_tree(ball, ball_exact, theta, true, ball_direct));
-    print_row("quadrupole", study.uniform.back());
+    uniform.push_back(measure_tree(ball, ball_exact, theta, true, ball_direct));
+    print_row("quadrupole", uniform.back());
   }
-  study.uniform.push_back(measure_tree(ball, ball_exact, par.theta, true, ball_direct,
-                                       sph::TreeGravity::default_relative_accuracy));
-  print_row("relative", study.uniform.back());
-  study.uniform_default =
-      measure_tree(ball, ball_exact, par.theta, !par.monopole, ball_direct, par.relative);
+  uniform.push_back(measure_tree(ball, ball_exact, par.theta, true, ball_direct,
+                                 sph::TreeGravity::default_relative_accuracy));
+  print_row("relative", uniform.back());
+  study.uniform_default = chapters_tree(uniform, par, [&] {
+    return measure_tree(ball, ball_exact, par.theta, !par.monopole, ball_direct, par.relative);
+  });
   app::save_tree_accuracy_figure(chapter.figure_path("tree_accuracy.png").string(), study.rows,
                                  par.particles, par.theta);
   return study;

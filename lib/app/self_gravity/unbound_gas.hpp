@@ -11,7 +11,9 @@
 /// to the centre of mass, so that a set that drifts as a whole does not count as escaping; the
 /// kinetic energy of that drift is reported apart.
 
+#include "sph/diagnostics.hpp"
 #include "sph/gravity/direct.hpp"
+#include "sph/gravity/softening.hpp"
 #include "sph/lagrangian_1d.hpp"
 #include "sph/particles.hpp"
 
@@ -35,20 +37,16 @@ inline UnboundGas unbound_gas(sph::Particles<3> p) {
   sph::DirectGravity direct;
   direct.add_accelerations(p, sph::Box<3>::open());
   const std::vector<double>& phi = direct.potential();
-  double mass = 0;
-  sph::Vec<3> momentum = sph::Vec<3>::Zero();
-  for (std::size_t i = 0; i < p.size(); ++i) {
-    mass += p.mass[i];
-    momentum += p.mass[i] * p.velocity[i];
-  }
-  const sph::Vec<3> v_cm = momentum / mass;
+  const double mass = sph::total_mass(p);
+  const sph::Vec<3> v_cm = sph::total_momentum(p) / mass;
   UnboundGas g;
+  g.kinetic = sph::kinetic_energy(p);
   g.bulk = 0.5 * mass * v_cm.squaredNorm();
   for (std::size_t i = 0; i < p.size(); ++i) {
     const double specific = 0.5 * (p.velocity[i] - v_cm).squaredNorm();
-    g.kinetic += 0.5 * p.mass[i] * p.velocity[i].squaredNorm();
-    const double from_others = phi[i] + 1.4 * direct.G * p.mass[i] / p.smoothing_length[i];
-    if (specific + p.internal_energy[i] + from_others > 0) {
+    const double self =
+        direct.G * p.mass[i] * sph::gravity::m4_potential(0.0, p.smoothing_length[i]);
+    if (specific + p.internal_energy[i] + phi[i] - self > 0) {
       g.mass += p.mass[i];
       g.unbound_kinetic += p.mass[i] * specific;
     }
