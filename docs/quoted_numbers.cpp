@@ -15,7 +15,9 @@
 // quotes a number of this kind and keeps its output in figures/<chapter>/try/<slug>.txt, and the
 // item's numbers are checked against those outputs (and the default run's, which an item may
 // quote for comparison, and the runs of the other items that it names in code font, as in "compare
-// with the `--neighbours-1d 4.8` run above").
+// with the `--neighbours-1d 4.8` run above").  The rest of the text may quote such a run too, where
+// it names it in code font: its numbers are then checked against the default run's output and
+// those of the runs it names.
 //
 //   sph_quoted_numbers tries <chapter source dir>   the runs to make: "<slug>\t<options>" lines
 //   sph_quoted_numbers check <project root>         check every chapter; exit 1 on a stale number
@@ -238,15 +240,23 @@ int check(const fs::path& root) {
     }
     const std::string recorded = read(output) + code;
     std::printf("%s\n", name.c_str());
-    checked += static_cast<int>(quoted_numbers(joined(body)).size());
-    stale += report_stale(body, numbers_in(recorded), "the output of the default run");
     // Every run the section makes (the items that quote numbers), for the items that name
-    // another item's run.
+    // another item's run, and for the rest of the text.
     std::set<std::string> runs;
     for (const TryItem& item : items) {
       if (quoted_numbers(joined(item.lines)).empty()) continue;
       runs.insert(item.options.begin(), item.options.end());
     }
+    std::string body_outputs = recorded, body_names = "the output of the default run";
+    const std::string body_text = joined(body);
+    for (const std::string& options : runs) {
+      const fs::path run = figures / "try" / (slug(options) + ".txt");
+      if (body_text.find("`" + options + "`") == std::string::npos || !fs::exists(run)) continue;
+      body_outputs += read(run);
+      body_names += " or of " + options;
+    }
+    checked += static_cast<int>(quoted_numbers(body_text).size());
+    stale += report_stale(body, numbers_in(body_outputs), body_names);
     for (const TryItem& item : items) {
       const std::string text = joined(item.lines);
       const auto numbers = quoted_numbers(text);

@@ -43,7 +43,8 @@
 ///  2. the tree: its force error against the opening angle and against its cost, and its cost
 ///     against the number of particles;
 ///  3. a test of gravity alone: the free fall of a cold uniform sphere;
-///  4. the Evrard collapse with the three viscosities of chapter 5: the energies (Fig 5);
+///  4. the Evrard collapse with the three viscosities of chapter 5: the energies (Fig 5), with
+///     each particle on its own time step (`--one-step`: one step for all, as the paper);
 ///  5. the radial profiles at t = 0.8 (Figs 6-7);
 ///  6. error against run time, at four or more resolutions;
 ///  7. stiff and extreme cases: the collapsed centre, a colder collapse, particles closer than
@@ -62,12 +63,15 @@
 /// (more than a quarter of the momentum scale).  Its energy is kept only because the leapfrog
 /// pays the work done on the velocities the collective term changes at the kicks (chapter 5); a
 /// leapfrog that does not loses 6 % of it by t = 3.  For the wall time spent, the modern switch
-/// is the most accurate in density from about 1.5 s of run time on (and its error falls fastest
+/// is the most accurate in density from about 2 s of run time on (and its error falls fastest
 /// with time), the modified viscosity in velocity at every resolution of the series (1024 to
-/// 8192 particles).  Softening gravity with the smoothing length costs 1 % of the energy by
-/// t = 3, and up to 3 % at the bounce; a fixed softening length conserves it to
-/// \f$ 4\times10^{-5} \f$ by t = 3 (\f$ 1.1\times10^{-4} \f$ at most, at the bounce).  Details in
-/// \ref ch06_findings "the findings".
+/// 8192 particles).  Softening gravity with the smoothing length costs up to 3 % of the energy at
+/// the bounce, half of which comes back; with one step for all a fixed softening length conserves
+/// it to \f$ 4\times10^{-5} \f$ by t = 3 (\f$ 1.1\times10^{-4} \f$ at most, at the bounce).
+/// Individual time steps -- each particle on the longest step its own limits allow -- make the
+/// collapses 1.2-1.6 times faster, the whole chapter run in under three minutes, and change the
+/// energy extremes by 1.5 % at most; but they do not conserve energy as the leapfrog with one
+/// step for all does.  Details in \ref ch06_findings "the findings".
 ///
 /// \section ch06_gravity The gravity of an SPH particle
 ///
@@ -91,8 +95,8 @@
 /// density (\f$ \rho h^3 = \text{const} \f$) and the grad-h factor of that relation.  Our h is
 /// set by the neighbour number (chapter 2), not by that relation, so the term does not apply
 /// as printed.  We leave it out and measure what it costs in Step 4: the total energy of the
-/// Evrard collapse with the softening equal to h, and with a fixed softening length for which
-/// energy is conserved by construction.
+/// Evrard collapse with the softening equal to h, and (with `--one-step`) with a fixed softening
+/// length for which energy is conserved by construction.
 
 #include "app/chapter.hpp"
 #include "app/curve_reading.hpp"
@@ -125,6 +129,7 @@
 #include <algorithm>
 #include <array>
 #include <cmath>
+#include <optional>
 #include <cstdio>
 #include <filesystem>
 #include <numbers>
@@ -167,7 +172,8 @@ struct Switch : sph::Scene<3> {
   using Terms = sph::Terms<sph::PressureOwnWork, sph::MorrisMonaghan1997>;
   using Gravity = G;
 };
-// The same scenes with individual time steps (Step 4 runs them once more, for their cost).
+// The same scenes with individual time steps: the collapses of Steps 4-6 run with them, unless
+// `--one-step` asks for the paper's one step for all.
 template <class Scene>
 struct OwnSteps : Scene {
   using Integrator = sph::IndividualLeapfrog<3>;
@@ -205,6 +211,7 @@ struct Parameters {
   int particles = 8192;
   int largest = 8192;  // the error series: 1024, 2048, ... up to this
   double t_end = 3.0;
+  bool one_step = false;  // Steps 4-6 with one step for all (and Step 4's comparisons)
   bool quick = false;
 
   sph::MonaghanGingold1983 standard() const { return {alpha, beta, nu2}; }
@@ -272,6 +279,10 @@ void declare_parameters(app::Chapter& chapter, Parameters& par) {
       .check(app::count_between(2048, 262144, [](double n) { return app::particle_bytes(3, n); }));
   chapter.parameter("--t-end", par.t_end, "end of the runs of Fig 5", 1.3)
       .check(app::between(0.9, 10.0));
+  chapter.flag("--one-step", par.one_step,
+               "Steps 4-6 with one step for all particles, as Selhammar integrates; Step 4 then "
+               "adds a run with a fixed softening and the comparison with individual steps "
+               "(about six minutes in all)");
 }
 
 /// \subsection ch06_smoothing The smoothing lengths gravity sees
@@ -843,11 +854,13 @@ FreeFallResult step3_free_fall(const app::Chapter& chapter, const Parameters& pa
 /// calculation.  The modified viscosity's extremes are deeper and earlier -- deeper than the
 /// exact answer -- and its kinetic energy peaks higher and later.  And the total energy drifts:
 /// with the softening equal to h, the energy is not conserved (see \ref ch06_gravity "above"); the
-/// step measures the drift, and runs the standard viscosity once more with a fixed softening
-/// length, for which it is conserved.
+/// step measures the drift, and with `--one-step` runs the standard viscosity once more with a
+/// fixed softening length, for which it is conserved.
 ///
-/// **The runs.**  One call of `app::run_evrard` is one run: it builds the sphere, names the
-/// scene's terms and gravity, and records after every step the three energies, the densest
+/// **The runs.**  One call of `run_collapse` (below) is one run: it gives the scene its
+/// integrator -- individual time steps, or with `--one-step` the leapfrog with one step for all
+/// -- and hands it to `app::run_evrard`, which builds the sphere, names the scene's terms and
+/// gravity, and records after every step the three energies, the densest
 /// particle, the least smoothing length and the least time step with what limited it (the
 /// numbers of Step 7).  It keeps a copy of the particles at t = 0.8 for Step 5, and the wall
 /// time and steps to there for Step 6.  A run that the simulation stops -- a time step below
@@ -856,51 +869,77 @@ FreeFallResult step3_free_fall(const app::Chapter& chapter, const Parameters& pa
 /// `app::load_evrard_reference` reads the two reference tables and runs our own Lagrangian code
 /// with 2000 shells (500 with `--quick`).
 ///
-/// **Individual time steps.**  Last, the standard and the modified viscosity run once more
-/// with each particle on its own time step (lib/sph/individual_leapfrog.hpp): the longest
-/// power-of-two fraction of a block of time that the particle's own limits allow -- the same
-/// criteria as the global step, for it alone -- kept within four times its neighbours' steps
-/// by the limiter of Saitoh & Makino (2009).  At each step only the particles whose step ends
-/// are evaluated: their neighbours, density, forces and gravity; the others drift and carry
-/// predicted velocities.  The table's rows "own steps" must follow the runs with one step for
-/// all to within the integration's error; a second table gives what they cost -- the particle
-/// updates of the whole run and the wall time, each against the run with one step for all.
-/// Selhammar (1997) integrates with one step for all, so Figs 5-7 and the claims stay with
-/// those runs.
+/// **Individual time steps.**  Each particle runs on its own time step
+/// (lib/sph/individual_leapfrog.hpp): the longest power-of-two fraction of a block of time that
+/// the particle's own limits allow -- the criteria of eq 7, for it alone -- kept within four
+/// times its neighbours' steps by the limiter of Saitoh & Makino (2009).  At each step only the
+/// particles whose step ends are evaluated: their neighbours, density, forces and gravity; the
+/// others drift and carry predicted velocities.  Selhammar (1997) integrates with one step for
+/// all, the least any particle needs.  We do not by default, because of what it costs: in the
+/// collapse a few hundred particles in the centre need steps ten times shorter than the rest of
+/// the sphere, and one step for all pays for the centre everywhere.  The modified viscosity's
+/// collapse takes 1.6 times as long with one step for all, and only with individual steps does
+/// the whole chapter run in three minutes.  `--one-step` runs Steps 4-6 as the paper does, and
+/// Step 4 then runs the standard and the modified viscosity once more with individual steps and
+/// compares: their energy extremes must agree to within the integration's error, and they do
+/// (\ref ch06_findings "the findings" give the numbers).  A run with individual steps records its
+/// energies only where all its particles are at the same time, at the end of a block, and a
+/// block spans the longest step any particle allows -- up to 0.19 late in the collapse, too few
+/// records to draw the curves or read their peaks.  So `app::run_evrard` ends a block at least
+/// every 0.01 (about 300 records; 9 % more particle updates).
 ///
-/// **Why a fixed softening of 0.01.**  A fixed length makes the softened potential a function
-/// of the positions alone, so the leapfrog conserves the total energy up to its own error,
-/// whatever the density does.  The length must not soften gravity on scales that the gas
-/// resolves, or it would change the collapse: 0.01 is just below the smallest smoothing length
-/// the standard run reaches at its densest (\f$ 1.05\times10^{-2} \f$, Step 7), so gravity is
-/// softened less than with h everywhere -- by a few per cent in the collapsed centre, by far
-/// more in the rest of the sphere, where h is larger -- and never on a scale the gas resolves.
+/// **Why a fixed softening of 0.01** (the run that `--one-step` adds).  A fixed length makes the
+/// softened potential a function of the positions alone, so the leapfrog conserves the total
+/// energy up to its own error, whatever the density does.  The length must not soften gravity on
+/// scales that the gas resolves, or it would change the collapse: 0.01 is just below the smallest
+/// smoothing length the standard run reaches at its densest (\f$ 1.05\times10^{-2} \f$, Step 7),
+/// so gravity is softened less than with h everywhere -- by a few per cent in the collapsed
+/// centre, by far more in the rest of the sphere, where h is larger -- and never on a scale the
+/// gas resolves.  It is run with one step for all: individual time steps do not conserve energy
+/// as that leapfrog does, and their own error would hide what the fixed length is meant to show
+/// (\ref ch06_findings "the findings").
 
 struct Collapse {
-  std::vector<app::EvrardRun> runs;       // standard, modified, switch
-  app::EvrardRun fixed;                   // standard with a fixed softening length
-  std::vector<app::EvrardRun> own_steps;  // standard and modified, individual time steps
+  std::vector<app::EvrardRun> runs;  // standard, modified, switch
+  std::string integration;           // how they were integrated, for the figures' stamps
+  // With `--one-step` only: the standard viscosity with a fixed softening length, and the
+  // standard and modified viscosity once more with individual time steps.
+  std::optional<app::EvrardRun> fixed;
+  std::vector<app::EvrardRun> own_steps;
   app::EvrardReference reference;
   double fixed_softening = 0.01;
 };
 
+/// One collapse of the scene \p Scene, with individual time steps (\p own_steps) or one step
+/// for all; the other arguments are app::run_evrard's.
+template <class Scene>
+app::EvrardRun run_collapse(bool own_steps, const std::string& name, const sph::EvrardSetup& setup,
+                            const typename Scene::Terms& terms, const sph::TreeGravity& tree,
+                            const sph::Settings& settings, double t_end, bool progress = true) {
+  if (own_steps) {
+    return app::run_evrard<OwnSteps<Scene>>(name, setup, terms, tree, settings, t_end, progress);
+  }
+  return app::run_evrard<Scene>(name, setup, terms, tree, settings, t_end, progress);
+}
+
 /// **The table.**  One row per calculation: the largest kinetic and thermal energy and the
 /// deepest potential energy, each with its time, for the 4000-shell reference, our 2000-shell
-/// Lagrangian code and the six SPH runs; then, for the SPH runs, the steps, the wall time,
-/// the relative change of the total energy at the end and the momentum drift.  A second table
-/// gives each run's largest change of the total energy on the way and when it came (the end
-/// value hides how much was lost at the bounce and won back).  A third says where the kinetic
-/// energy sits at the end: how much of it is the drift of the centre of mass, how much gas is
-/// no longer bound to the rest (\f$ \tfrac12|\mathbf v - \mathbf v_\mathrm{cm}|^2 + u + \Phi >
-/// 0 \f$, `app::unbound_gas`, with \f$ \Phi \f$ from direct summation; for our 1D code from
-/// its shells), and how much kinetic energy that gas carries.  A fourth sets the two runs with
-/// individual time steps against their runs with one step for all: their particle updates, how
-/// many times fewer those are, and how many times less wall time they took.  The times say as
-/// much as the heights.  In the recorded run the kinetic energy of every run peaks close to
-/// the reference's t = 0.875 (standard 0.870, switch 0.867, modified 0.924), but the thermal
-/// energy does not: the standard viscosity and the switch reach their largest thermal energy
-/// at t = 1.110 and 1.097, after the reference's 1.065, and the modified viscosity at 1.036,
-/// before it.
+/// Lagrangian code and the three SPH runs (six with `--one-step`: the fixed softening and the two
+/// runs with individual steps follow); then, for the SPH runs, the steps, the wall time, the
+/// relative change of the total energy at the end and the momentum drift.  A second table gives
+/// each run's largest change of the total energy on the way and when it came (the end value
+/// hides how much was lost at the bounce and won back).  A third says where the kinetic energy
+/// sits at the end: how much of it is the drift of the centre of mass, how much gas is no longer
+/// bound to the rest (\f$ \tfrac12|\mathbf v - \mathbf v_\mathrm{cm}|^2 + u + \Phi > 0 \f$,
+/// `app::unbound_gas`, with \f$ \Phi \f$ from direct summation; for our 1D code from its
+/// shells), and how much kinetic energy that gas carries.  With `--one-step` a fourth sets the
+/// two runs with individual time steps against their runs with one step for all: their particle
+/// updates, how many times fewer those are, and how many times less wall time they took.  The
+/// times say as much as the heights.  In the recorded run (individual steps, whose energies are
+/// read every 0.01 or more often) the kinetic energy of every run peaks close to the reference's
+/// t = 0.875 (standard and switch 0.870, modified 0.920), but the thermal energy does not: the
+/// standard viscosity and the switch reach their largest thermal energy at t = 1.110 and 1.100,
+/// after the reference's 1.065, and the modified viscosity at 1.040, before it.
 
 void print_energy_table(const Collapse& c, const Parameters& par) {
   const app::EvrardReference& ref = c.reference;
@@ -921,10 +960,11 @@ void print_energy_table(const Collapse& c, const Parameters& par) {
   };
   row("4000-shell reference", r, 0, 0, 0, 0);
   row("ours, 1D, " + std::to_string(par.quick ? 500 : 2000) + " shells", own, 0, 0, 0, 0);
-  const std::array<const app::EvrardRun*, 6> runs = {&c.runs[0], &c.runs[1],      &c.runs[2],
-                                                     &c.fixed,   &c.own_steps[0], &c.own_steps[1]};
+  std::vector<const app::EvrardRun*> runs = {&c.runs[0], &c.runs[1], &c.runs[2]};
+  if (c.fixed) runs.push_back(&*c.fixed);
+  for (const app::EvrardRun& run : c.own_steps) runs.push_back(&run);
   const auto name = [&c](const app::EvrardRun* run) {
-    return run == &c.fixed ? std::string("std., fixed softening") : run->name;
+    return c.fixed && run == &*c.fixed ? std::string("std., fixed softening") : run->name;
   };
   for (const app::EvrardRun* run : runs) {
     row(name(run), app::extremes(*run), run->steps, run->seconds, run->energy_error,
@@ -955,6 +995,7 @@ void print_energy_table(const Collapse& c, const Parameters& par) {
   unbound_row("ours, 1D", app::unbound_gas(ref.own_end, ref.own_zone_mass));
   for (const app::EvrardRun* run : {&c.runs[0], &c.runs[1], &c.runs[2]})
     unbound_row(run->name, app::unbound_gas(run->at_end));
+  if (c.own_steps.empty()) return;
   std::printf("  individual time steps against one step for all:\n");
   std::printf("    %-10s %16s %12s %12s\n", "", "particle updates", "fewer by", "faster by");
   for (std::size_t k = 0; k < c.own_steps.size(); ++k) {
@@ -974,24 +1015,31 @@ Collapse step4_energies(const app::Chapter& chapter, const Parameters& par,
   const sph::Settings settings = par.settings();
   const sph::TreeGravity tree = par.tree();
   using Tree = sph::TreeGravity;
-  c.runs.push_back(app::run_evrard<Standard<Tree>>("standard", setup, {{}, par.standard()}, tree,
-                                                   settings, par.t_end));
-  c.runs.push_back(app::run_evrard<Modified<Tree>>(
-      "modified", setup, {{}, par.restricted(), par.collective()}, tree, settings, par.t_end));
-  c.runs.push_back(app::run_evrard<Switch<Tree>>("switch", setup, {{}, par.switch_av()}, tree,
-                                                 settings, par.t_end));
-  sph::TreeGravity fixed_tree = tree;
-  fixed_tree.fixed_softening = c.fixed_softening;
-  c.fixed = app::run_evrard<Standard<Tree>>("standard, fixed softening", setup,
-                                            {{}, par.standard()}, fixed_tree, settings, par.t_end);
-  c.own_steps.push_back(app::run_evrard<OwnSteps<Standard<Tree>>>(
-      "standard, own steps", setup, {{}, par.standard()}, tree, settings, par.t_end));
-  c.own_steps.push_back(app::run_evrard<OwnSteps<Modified<Tree>>>(
-      "modified, own steps", setup, {{}, par.restricted(), par.collective()}, tree, settings,
-      par.t_end));
+  const bool own = !par.one_step;
+  c.integration = own ? "individual time steps" : "one step for all";
+  std::printf("  %s\n", own ? "individual time steps (--one-step: one step for all, as the paper)"
+                            : "one step for all, as the paper");
+  c.runs.push_back(run_collapse<Standard<Tree>>(own, "standard", setup, {{}, par.standard()}, tree,
+                                                settings, par.t_end));
+  c.runs.push_back(run_collapse<Modified<Tree>>(
+      own, "modified", setup, {{}, par.restricted(), par.collective()}, tree, settings, par.t_end));
+  c.runs.push_back(run_collapse<Switch<Tree>>(own, "switch", setup, {{}, par.switch_av()}, tree,
+                                              settings, par.t_end));
+  if (par.one_step) {
+    sph::TreeGravity fixed_tree = tree;
+    fixed_tree.fixed_softening = c.fixed_softening;
+    c.fixed = app::run_evrard<Standard<Tree>>(
+        "standard, fixed softening", setup, {{}, par.standard()}, fixed_tree, settings, par.t_end);
+    c.own_steps.push_back(app::run_evrard<OwnSteps<Standard<Tree>>>(
+        "standard, own steps", setup, {{}, par.standard()}, tree, settings, par.t_end));
+    c.own_steps.push_back(app::run_evrard<OwnSteps<Modified<Tree>>>(
+        "modified, own steps", setup, {{}, par.restricted(), par.collective()}, tree, settings,
+        par.t_end));
+  }
   print_energy_table(c, par);
-  app::save_evrard_energy_figure(chapter.figure_path("fig5_energies.png").string(), c.runs, c.fixed,
-                                 c.reference, c.fixed_softening);
+  app::save_evrard_energy_figure(chapter.figure_path("fig5_energies.png").string(), c.runs,
+                                 c.fixed ? &*c.fixed : nullptr, c.reference, c.fixed_softening,
+                                 c.integration);
   return c;
 }
 
@@ -1087,12 +1135,13 @@ Profiles step5_profiles(const app::Chapter& chapter, const Collapse& c) {
   }
   app::save_evrard_profile_figure(
       chapter.figure_path("fig6_standard.png").string(), c.runs[0], ref,
-      "Evrard collapse at t = 0.8, standard viscosity (Selhammar Fig 6)");
+      "Evrard collapse at t = 0.8, standard viscosity (Selhammar Fig 6)", c.integration);
   app::save_evrard_profile_figure(
       chapter.figure_path("fig7_modified.png").string(), c.runs[1], ref,
-      "Evrard collapse at t = 0.8, modified viscosity (Selhammar Fig 7)");
+      "Evrard collapse at t = 0.8, modified viscosity (Selhammar Fig 7)", c.integration);
   app::save_evrard_profile_figure(chapter.figure_path("fig_switch.png").string(), c.runs[2], ref,
-                                  "Evrard collapse at t = 0.8, the Morris & Monaghan switch");
+                                  "Evrard collapse at t = 0.8, the Morris & Monaghan switch",
+                                  c.integration);
   return result;
 }
 
@@ -1105,10 +1154,11 @@ Profiles step5_profiles(const app::Chapter& chapter, const Collapse& c) {
 /// relative change of the total energy, against the whole run's wall time ("per CPU second"
 /// means here per second of wall time on the machine's two threads, what a user waits for).
 /// Below 4096 particles a step runs on one thread (two would not be faster: starting them costs
-/// more than the work), so the wall time grows 2.6-3.3 times from 1024 to 2048 particles,
-/// 1.6-2.0 times from 2048 to 4096, where the second thread starts, and 2.4-3.0 times from 4096 to
-/// 8192: the cost slopes below are those of the time a user waits, threads included.  The runs at
-/// Fig 5's particle number are Step 4's, timed to t = 0.8.  The figure is
+/// more than the work), so the wall time grows 2.3-2.5 times from 1024 to 2048 particles,
+/// 1.3-1.7 times from 2048 to 4096, where the second thread starts, and 2.3-2.7 times from 4096 to
+/// 8192: the cost slopes below are those of the time a user waits, threads included.  Every run
+/// integrates as Step 4's do (individual time steps; with `--one-step` one step for all), and the
+/// runs at Fig 5's particle number are Step 4's, timed to t = 0.8.  The figure is
 /// `evrard_error_vs_time.png`.
 ///
 /// What to look for: which line lies lower and further left.  The errors are dominated by the
@@ -1157,6 +1207,7 @@ Cost step6_error_against_run_time(const app::Chapter& chapter, const Parameters&
   const sph::TreeGravity tree = par.tree();
   using Tree = sph::TreeGravity;
   const char* names[] = {"standard", "modified", "switch"};
+  const bool own = !par.one_step;
   for (int k = 0; k < 3; ++k) {
     for (int n : cost.counts) {
       sph::EvrardSetup setup;
@@ -1165,14 +1216,15 @@ Cost step6_error_against_run_time(const app::Chapter& chapter, const Parameters&
       if (n == par.particles && c.runs[k].t.back() >= 0.8) {
         run = c.runs[k];
       } else if (k == 0) {
-        run = app::run_evrard<Standard<Tree>>(names[k], setup, {{}, par.standard()}, tree, settings,
-                                              0.8, false);
+        run = run_collapse<Standard<Tree>>(own, names[k], setup, {{}, par.standard()}, tree,
+                                           settings, 0.8, false);
       } else if (k == 1) {
-        run = app::run_evrard<Modified<Tree>>(
-            names[k], setup, {{}, par.restricted(), par.collective()}, tree, settings, 0.8, false);
+        run = run_collapse<Modified<Tree>>(own, names[k], setup,
+                                           {{}, par.restricted(), par.collective()}, tree, settings,
+                                           0.8, false);
       } else {
-        run = app::run_evrard<Switch<Tree>>(names[k], setup, {{}, par.switch_av()}, tree, settings,
-                                            0.8, false);
+        run = run_collapse<Switch<Tree>>(own, names[k], setup, {{}, par.switch_av()}, tree,
+                                         settings, 0.8, false);
       }
       if (!run.stopped.empty()) throw sph::Error(std::string(names[k]) + ": " + run.stopped);
       cost.study.add(evrard_record(names[k], n, run, c.reference));
@@ -1182,20 +1234,24 @@ Cost step6_error_against_run_time(const app::Chapter& chapter, const Parameters&
   app::ErrorFigureOptions options;
   options.stamp = plot::format_stamp({.kernel = "M4",
                                       .neighbours = 64,
-                                      .extra = "tree gravity, softening = h; reference: 1D "
-                                               "finite volume, 8000 cells"});
+                                      .extra = "tree gravity, softening = h; " + c.integration +
+                                               "; reference: 1D finite volume, 8000 cells"});
   app::save_error_figure(cost.study, chapter.figure_path("evrard_error_vs_time.png"), options);
   return cost;
 }
 
 /// **Reading the cost slopes.**  The order says how fast a method converges; the cost slope
 /// says what a second of computing buys, which is the question of this step.  In the recorded
-/// run, from 1024 to 8192 particles, the slopes in \f$ L_1(\log_{10}\rho) \f$ are -0.18
-/// (standard), -0.12 (modified) and -0.25 (switch), and in \f$ L_1(v_r) \f$ -0.25, -0.13 and
-/// -0.29: the switch gains the most accuracy per doubling of the time in both, the modified
+/// run, from 1024 to 8192 particles, the slopes in \f$ L_1(\log_{10}\rho) \f$ are -0.20
+/// (standard), -0.15 (modified) and -0.35 (switch), and in \f$ L_1(v_r) \f$ -0.28, -0.16 and
+/// -0.40: the switch gains the most accuracy per doubling of the time in both, the modified
 /// viscosity the least -- though in velocity it starts far lower, which is why it is still
 /// ahead at these resolutions (\ref ch06_findings "the findings").  The energy error falls
-/// faster than \f$ \Delta x \f$, at orders 1.65, 2.38 and 1.77.
+/// faster than \f$ \Delta x \f$, at orders 1.72, 2.51 and 1.85.  (With one step for all, in the
+/// recorded run of `--one-step`, the slopes in density are shallower, -0.17, -0.12 and -0.26,
+/// and the orders nearly the same: individual steps save the most at the larger particle
+/// numbers, whose centres span more levels, and below 4096 particles, on one thread, they are
+/// sometimes slower than one step for all.)
 
 /// \section ch06_extreme Step 7: stiff and extreme cases
 ///
@@ -1227,34 +1283,44 @@ struct Extreme {
 /// steps.  The scale to compare the densities with is the initial density at the innermost
 /// particle: the Evrard sphere has \f$ M(r) = r^2 \f$, so the radius holding half a particle's
 /// mass is \f$ r = (2N)^{-1/2} \f$, where \f$ \rho = 1/(2\pi r) \f$ -- 20.4 at 8192 particles.
-/// The standard run's centre is compressed fifteen times beyond that (302.4), the modified
-/// run's nearly ninety times (1797.2).  Every least step in the recorded run is set by the Courant
-/// condition of eq 7: the denser centre costs steps through its smaller h.
+/// The standard run's centre is compressed fifteen times beyond that (302.1), the modified
+/// run's nearly ninety times (1774.7).  With individual time steps the least step is the least
+/// advance of the clock from one evaluation to the next: where a particle's own limit sets it,
+/// it is the Courant condition of eq 7 (the modified viscosity and the switch in the recorded
+/// run); where the limiter cut a neighbour's step short to stay within four times a particle
+/// that has just started a short one, it says "neighbour's step" (the standard viscosity).
+/// Either way the denser centre costs steps through its smaller h.  With one step for all
+/// (`--one-step`) every least step of the recorded run is eq 7's.
 ///
-/// The last column asks what individual time steps would save.  After every step each
-/// particle's own limit -- the same criteria, for it alone (`particle_timesteps` of the
-/// simulation) -- puts it in the largest power-of-two multiple of the least step that it
+/// The last column, with one step for all, asks what individual time steps would save.  After
+/// every step each particle's own limit -- the same criteria, for it alone (`particle_timesteps`
+/// of the simulation) -- puts it in the largest power-of-two multiple of the least step that it
 /// allows; a particle in bin k would be updated once every \f$ 2^k \f$ global steps.  The
 /// column is the run's particle updates divided by that scheme's: the most it could gain, since
-/// it counts nothing of what such a scheme costs besides.  Step 4 runs the scheme itself, with
-/// its limiter, which keeps neighbours' steps within a factor of four and so could only add
-/// updates: the standard run made 1.87 times fewer updates (this column: 1.91), the modified
-/// one 2.27 times (2.38).
+/// it counts nothing of what such a scheme costs besides.  The runs with individual steps made
+/// 1.71 times fewer updates (standard; this column: 1.91) and 2.16 times (modified; 2.38) in the
+/// recorded run of `--one-step`: their limiter, which keeps neighbours' steps within a factor of
+/// four, and the block that ends every 0.01 for the records can only add updates.
 
 void collapsed_centre(const Parameters& par, const Collapse& c) {
   std::printf("  the collapsed centre (Step 4's runs):\n");
-  std::printf("    %-10s %10s %7s %9s %10s %-14s %6s %7s\n", "", "peak rho", "at t", "least h",
+  std::printf("    %-10s %10s %7s %9s %10s %-26s %6s %7s\n", "", "peak rho", "at t", "least h",
               "least dt", "(limited by)", "steps", "own dt");
   for (const app::EvrardRun* run : {&c.runs[0], &c.runs[1], &c.runs[2]}) {
-    std::printf("    %-10s %10.1f %7.3f %9.2e %10.2e %-14s %6ld %6.2fx\n", run->name.c_str(),
+    std::printf("    %-10s %10.1f %7.3f %9.2e %10.2e %-26s %6ld", run->name.c_str(),
                 run->peak_density, run->t_peak, run->least_h, run->least_dt,
-                run->least_dt_criterion.c_str(), run->steps,
-                run->updates / run->individual_updates);
+                run->least_dt_criterion.c_str(), run->steps);
+    // (with individual time steps the column is not computed: they are the scheme)
+    if (run->individual_updates > 0) {
+      std::printf(" %6.2fx\n", run->updates / run->individual_updates);
+    } else {
+      std::printf(" %7s\n", "-");
+    }
   }
   std::printf(
       "    (the initial density is 1/(2 pi r): %.1f at the innermost particle;\n"
-      "    own dt: how many times fewer particle updates individual time steps in\n"
-      "    power-of-two bins would make, at best)\n",
+      "    own dt, with one step for all: how many times fewer particle updates individual\n"
+      "    time steps in power-of-two bins would make, at best)\n",
       1.0 / (2 * pi * std::sqrt(0.5 / par.particles)));
 }
 
@@ -1265,7 +1331,7 @@ void collapsed_centre(const Parameters& par, const Collapse& c) {
 /// follow the collapse must say so: the run either reaches the end or stops with the
 /// simulation's message, which the step prints.  In the recorded run it reaches the end in
 /// 545 steps; the centre peaks at 893 at t = 1.080 and bounces, three times denser than the
-/// warm standard run with twice the particles (302.4); its least smoothing length,
+/// warm standard run with twice the particles (302.1); its least smoothing length,
 /// \f$ 1.03\times10^{-2} \f$, is about that run's, \f$ 1.05\times10^{-2} \f$.  What stops the
 /// collapse is discussed in \ref ch06_findings "the findings".
 
@@ -1308,7 +1374,9 @@ void close_pairs(const Parameters& par, Extreme& x) {
   sph::Particles<3> p = sph::make_particles<3>({Vec3(0, 0, 0), Vec3(0.01, 0, 0)}, 0.5, 0.0);
   for (double& h : p.smoothing_length) h = 0.1;
   const app::GravityField f = app::gravity_alone(par.tree(), p);
-  const double exact = 0.5 * sph::gravity::pair_force_over_r(0.01, 0.1, 0.1) * 0.01;
+  // (the softening length the tree uses: h, or `--softening`)
+  const double eps = par.softening > 0 ? par.softening : 0.1;
+  const double exact = 0.5 * sph::gravity::pair_force_over_r(0.01, eps, eps) * 0.01;
   x.close_force_error = std::abs(f.a[0].x() - exact) / exact + (f.a[0] + f.a[1]).norm() / exact;
   sph::Particles<3> same = sph::make_particles<3>({Vec3(0, 0, 0), Vec3(0, 0, 0)}, 0.5, 0.0);
   for (double& h : same.smoothing_length) h = 0.1;
@@ -1340,7 +1408,9 @@ void far_particle(const Parameters& par, Extreme& x) {
   s.particles = par.quick ? 1024 : 4096;
   sph::Particles<3> p = with_smoothing_lengths(sph::make_evrard_sphere(s), par);
   p.position.back() = Vec3(1e4, 0, 0);
-  const app::GravityField exact = app::gravity_alone(sph::DirectGravity{}, p);
+  sph::DirectGravity direct;
+  direct.fixed_softening = par.softening;  // (the tree's softening, for a like comparison)
+  const app::GravityField exact = app::gravity_alone(direct, p);
   const app::GravityField tree = app::gravity_alone(par.tree(), p);
   std::vector<double> error;
   for (std::size_t i = 0; i + 1 < p.size(); ++i)
@@ -1399,37 +1469,45 @@ Extreme step7_extreme(const Parameters& par, const Collapse& c) {
 ///
 /// **Fig 5** (`fig5_energies.png`).  The reference: \f$ E_\mathrm{kin} \f$ peaks at 0.451
 /// (t = 0.875), \f$ E_\mathrm{th} \f$ at 1.761 (t = 1.065), W falls to -2.547 (t = 1.045); our
-/// Lagrangian code with 2000 shells agrees to 0.2 %.  At 8192 particles:
+/// Lagrangian code with 2000 shells agrees to 0.2 %.  At 8192 particles, with individual time
+/// steps (the default run) and with one step for all (the recorded run of `--one-step`):
 ///
-/// | viscosity | peak kinetic | peak thermal | deepest W | steps | energy change | momentum drift |
-/// |:--|--:|--:|--:|--:|--:|--:|
-/// | reference | 0.451 | 1.761 | -2.547 | | | |
-/// | standard | 0.344 | 1.469 | -2.215 | 1368 | 8.8e-3 | 8.4e-5 |
-/// | modified | 0.574 | 2.376 | -3.483 | 3033 | 1.4e-2 | 0.28 |
-/// | switch | 0.375 | 1.517 | -2.289 | 920 | 9.3e-3 | 8.4e-5 |
-/// | standard, softening 0.01 | 0.347 | 1.487 | -2.233 | 1424 | 4.3e-5 | 2.7e-4 |
+/// | viscosity | time step | peak kinetic | peak thermal | deepest W | steps | dE/E | drift |
+/// |:--|:--|--:|--:|--:|--:|--:|--:|
+/// | reference | | 0.451 | 1.761 | -2.547 | | | |
+/// | standard | individual | 0.344 | 1.470 | -2.215 | 2031 | 5.6e-3 | 9.3e-5 |
+/// | | one for all | 0.344 | 1.469 | -2.215 | 1368 | 8.8e-3 | 8.4e-5 |
+/// | modified | individual | 0.574 | 2.413 | -3.513 | 4267 | 8.2e-3 | 0.33 |
+/// | | one for all | 0.574 | 2.376 | -3.483 | 3033 | 1.4e-2 | 0.28 |
+/// | switch | individual | 0.375 | 1.518 | -2.288 | 1297 | 5.0e-3 | 1.4e-4 |
+/// | | one for all | 0.375 | 1.517 | -2.289 | 920 | 9.3e-3 | 8.4e-5 |
+/// | standard, softening 0.01 | one for all | 0.347 | 1.487 | -2.233 | 1424 | 4.3e-5 | 2.7e-4 |
 ///
-/// (energy change: \f$ |E(3) - E(0)|/|E(0)| \f$; momentum drift: \f$ |\mathbf P(3)| \f$ over
-/// \f$ \sum m|\mathbf v| \f$.)
+/// (dE/E: \f$ |E(3) - E(0)|/|E(0)| \f$; drift, of the momentum: \f$ |\mathbf P(3)| \f$ over
+/// \f$ \sum m|\mathbf v| \f$.)  The two integrations agree to 0.05 % in the standard
+/// viscosity's extremes and to 1.5 % in the modified one's, whose collective term amplifies
+/// any difference (Step 4's checks); nothing below depends on which is used.
 ///
-/// Selhammar: "the curves are more shallow" with the standard viscosity.  **Reproduced**: its
-/// largest thermal energy is 1.469 against the modified viscosity's 2.376, its deepest W -2.215
-/// against -3.483.  What the paper does not say, and the reference shows: the exact curves lie
-/// between the two.  The standard viscosity's are too shallow, by 24 % in
-/// \f$ E_\mathrm{kin} \f$ -- it heats and brakes the gas as it falls, long before the shock
-/// (Fig 6) -- and the modified viscosity's are too deep, by 27 % in \f$ E_\mathrm{kin} \f$
-/// and 37 % in W.  Its collapse goes further than the exact one can: the gas passes through
+/// Selhammar: "the curves are more shallow" with the standard viscosity.  **Reproduced**, with
+/// either integration: its largest thermal energy is 1.470 against the modified viscosity's
+/// 2.413 (one step for all: 1.469 and 2.376), its deepest W -2.215 against -3.513 (-3.483).
+/// What the paper does not say, and the reference shows: the exact curves lie between the two.
+/// The standard viscosity's are too shallow, by 24 % in \f$ E_\mathrm{kin} \f$ -- it heats and
+/// brakes the gas as it falls, long before the shock (Fig 6) -- and the modified viscosity's are
+/// too deep, by 27 % in \f$ E_\mathrm{kin} \f$ and 37-38 % in W.  Its collapse goes further than
+/// the exact one can: the gas passes through
 /// the shock without enough dissipation (the restricted term acts only where the approach
 /// exceeds what the compression explains, which in a converging flow near the centre it
 /// rarely does).  Its energy is conserved as the others' are, because the leapfrog pays the
-/// work of the collective term's kicks (without that payment it loses 5.6 % by t = 3): it
-/// changes by 1.4 % by t = 3 with the softening equal to h
-/// (standard and switch 0.9 %), most of it the softening's error, which is largest in the
-/// modified viscosity's denser core: at the bounce, where the gas is most compressed, the
-/// change is \f$ 3.14\times10^{-2} \f$ at t = 1.023 (standard \f$ 1.66\times10^{-2} \f$ at 1.074,
-/// switch \f$ 1.73\times10^{-2} \f$; Step 4's second table, Fig 5 d), and about half of it comes
-/// back as the core re-expands -- the work that a varying softening leaves out is done as the
-/// smoothing lengths shrink and partly undone as they grow again.  The collective term conserves
+/// work of the collective term's kicks (without that payment it loses 5.6 % by t = 3).  With one
+/// step for all, whose leapfrog keeps the energy to \f$ 4.3\times10^{-5} \f$ when gravity does
+/// (the fixed softening), it changes by 1.4 % by t = 3 with the softening equal to h (standard
+/// and switch 0.9 %), most of it the softening's error, which is largest in the modified
+/// viscosity's denser core: at the bounce, where the gas is most compressed, the change is
+/// \f$ 3.14\times10^{-2} \f$ at t = 1.023 (standard \f$ 1.66\times10^{-2} \f$ at 1.074, switch
+/// \f$ 1.73\times10^{-2} \f$; Step 4's second table), and about half of it comes back as the
+/// core re-expands -- the work that a varying softening leaves out is done as the smoothing
+/// lengths shrink and partly undone as they grow again.  The collective term conserves
 /// \f$ \Delta T + \Delta U = 0 \f$ in each kick (chapter 5), but it changes the velocities at the
 /// kicks, and the work that the pressure forces and gravity do on those changes was left unpaid --
 /// of first order in the step, and large, because the term relaxes a particle's velocity to its
@@ -1442,12 +1520,25 @@ Extreme step7_extreme(const Parameters& par, const Collapse& c) {
 /// the collapse goes too deep.  Since the collective term is not a pair force, momentum drifts by
 /// more than a quarter of \f$ \sum m|\mathbf v| \f$.
 ///
+/// **Individual time steps and the energy.**  The default runs, with individual time steps
+/// (Fig 5 d), change their energy less -- 0.56 %, 0.82 % and 0.50 % at t = 3, \f$ 1.44\times10^{-2}
+/// \f$, \f$ 2.62\times10^{-2} \f$ and \f$ 1.45\times10^{-2} \f$ at the bounce -- but not because
+/// they conserve better: they have an error of their own, which here partly cancels the
+/// softening's.  With the fixed softening (`--softening 0.01`, which runs every collapse with it)
+/// the standard viscosity's energy changes by \f$ 3.2\times10^{-3} \f$ by t = 3 with individual
+/// steps, against \f$ 4.3\times10^{-5} \f$ with one step for all.  A particle's kicks are not
+/// paired with its neighbours' when their steps differ -- the forces between them are equal and
+/// opposite only when both are evaluated at once -- and a step cut short by the limiter takes back
+/// a kick that was computed for a longer one.  This is what GADGET-2 and its successors accept for
+/// their speed; a course that wants to see the softening's cost alone runs `--one-step`.
+///
 /// **Where the late kinetic energy sits.**  After the bounce the modified run keeps a kinetic
 /// energy near 0.4 to t = 3 (Fig 5 b), twice the reference's 0.21.  Step 4's third table says
-/// where: at t = 3 the gas no longer bound to the rest holds 0.3529 of its 0.3847 -- 11.5 % of
-/// the mass, thrown off at the bounce -- and the drift of its centre of mass only 0.0086.  Our
-/// 1D code throws off 7.95 % of the mass with 0.1963 of its 0.2046, the standard viscosity
-/// 6.54 % with 0.0935, the switch 7.10 % with 0.1135.  So in every calculation the late kinetic
+/// where: at t = 3 the gas no longer bound to the rest holds 0.3638 of its 0.4022 -- 11.6 % of
+/// the mass, thrown off at the bounce -- and the drift of its centre of mass only 0.0133 (with
+/// one step for all: 0.3529 of 0.3847 in 11.5 %, drift 0.0086).  Our 1D code throws off 7.95 % of
+/// the mass with 0.1963 of its 0.2046, the standard viscosity 6.56 % with 0.0940, the switch
+/// 7.23 % with 0.1148.  So in every calculation the late kinetic
 /// energy is the outflow's, and the viscosities differ in how hard the bounce throws: the
 /// modified viscosity's collapse, too deep, rebounds too hard -- half as much gas again as the
 /// 1D code, with nearly twice its kinetic energy -- while the standard viscosity, which
@@ -1470,26 +1561,27 @@ Extreme step7_extreme(const Parameters& par, const Collapse& c) {
 /// core is twice too dense -- gas that has gone through the shock rather than been stopped by it.
 ///
 /// **Error against run time** (`evrard_error_vs_time.png`, t = 0.8).  At 8192 particles
-/// \f$ L_1(\log_{10}\rho) \f$ is 0.100 (standard), 0.084 (modified), 0.081 (switch) and
-/// \f$ L_1(v_r) \f$ 0.164, 0.085, 0.116, in 3.4, 8.2 and 4.3 s (the run in `output.txt`, two
-/// threads of a machine with AVX-512).  From 1024 to 8192 particles
-/// the modified viscosity converges at order 0.43 in density, the standard one at 0.71 and the
-/// switch at 0.95.  With `--largest 65536` (about 15 minutes in all) the series goes on to
-/// 65536 particles, and the lines part: there \f$ L_1(\log_{10}\rho) \f$ is 0.045
-/// (standard, 87 s), 0.070 (modified, 164 s) and 0.035 (switch, 91 s), and \f$ L_1(v_r) \f$
-/// 0.067, 0.071 and 0.046 (a run with `--particles 2048 --largest 65536` on the machine of
-/// `output.txt`, whose rows up to 8192 particles are those of `output.txt` to the digit).
-/// The modified viscosity's errors stall (order 0.36 from 1024 to 65536 particles, the others
-/// 0.95-1.2): what limits it is not resolution but the gas it lets through the shock.  Does the
-/// modified viscosity buy accuracy per CPU second in the collapse it was designed for?  In
-/// velocity, up to about 32768 particles, yes: its infall is right, and with 1024 particles it
-/// beats the standard viscosity's 8192-particle \f$ L_1(v_r) \f$ in a fifth of the time.  In
-/// density, and beyond that resolution, no; and its energy error is the largest.  The switch is
-/// the best buy of the three.
+/// \f$ L_1(\log_{10}\rho) \f$ is 0.100 (standard), 0.085 (modified), 0.081 (switch) and
+/// \f$ L_1(v_r) \f$ 0.164, 0.086, 0.115, in 4.0, 5.4 and 3.4 s (the run in `output.txt`, two
+/// threads of a machine with AVX-512; with one step for all the errors agree to 1.5 % and the
+/// runs take 1.2-1.5 times as long).  From 1024 to 8192 particles the modified viscosity converges
+/// at order 0.42 in density, the standard one at 0.71 and the switch at 0.96.  With `--largest
+/// 65536` the series goes on to 65536 particles, and the lines part: there \f$ L_1(\log_{10}\rho)
+/// \f$ is 0.045 (standard, 87 s), 0.070 (modified, 164 s) and 0.035 (switch, 91 s), and \f$
+/// L_1(v_r) \f$ 0.067, 0.071 and 0.046 (a run with one step for all, `--one-step --particles 2048
+/// --largest 65536`, about 15 minutes, on the machine of `output.txt`, whose rows up to 8192
+/// particles are those of the recorded run of `--one-step` to the digit). The modified viscosity's
+/// errors stall (order 0.36 from 1024 to 65536 particles, the others 0.95-1.2): what limits it is
+/// not resolution but the gas it lets through the shock.  Does the modified viscosity buy accuracy
+/// per CPU second in the collapse it was designed for?  In velocity, up to about 32768 particles,
+/// yes: its infall is right, and with 1024 particles it beats the standard viscosity's
+/// 8192-particle \f$ L_1(v_r) \f$ in a fifth of the time.  In density, and beyond that resolution,
+/// no; and its energy error is the largest.  The switch is the best buy of the three.
 ///
 /// **Extreme cases.**  The standard run's centre reaches \f$ \rho = 302 \f$ (1270 times the mean
-/// density), the modified one's 1800, with h down to 0.006 and a step of \f$ 3.9\times10^{-4}
-/// \f$; the colder collapse (u = 0.005, 4096 particles) bounces at t = 1.08 with a central
+/// density), the modified one's 1770, with h down to 0.006 and a step of
+/// \f$ 3.12\times10^{-4} \f$ (\f$ 3.87\times10^{-4} \f$ with one step for all); the colder
+/// collapse (u = 0.005, 4096 particles) bounces at t = 1.08 with a central
 /// density of 893 and runs on, far below the contrast of order \f$ 10^6 \f$ that a cold
 /// collapse can reach.  That the resolution, not the physics, sets its peak is our reading,
 /// and the evidence is indirect: its least smoothing length is the warm run's (0.0103 against
@@ -1500,66 +1592,68 @@ Extreme step7_extreme(const Parameters& par, const Collapse& c) {
 /// usual size (maximum \f$ 5\times10^{-4} \f$) and feels \f$ GM/r^2 \f$ to
 /// \f$ 3\times10^{-7} \f$.
 ///
-/// **What it costs.**  At 8192 particles the standard run to t = 3 takes 38 s in the recorded
-/// run (two threads of an AMD EPYC with AVX-512; 1368 steps), the modified viscosity's 111 s:
-/// its denser centre needs 3033 steps, each 1.3 times the standard's cost (the collective
-/// term's sums).  With individual time steps (Step 4's last two runs) the same collapses take
-/// 27 s and 66 s: 1.40 and 1.68 times faster, for 1.87 and 2.27 times fewer particle updates,
-/// with energy extremes within 0.2 % (standard) and 1.2 % (modified) of the runs with one step
-/// for all, and a smaller energy error (\f$ 5.9\times10^{-3} \f$ against
-/// \f$ 8.8\times10^{-3} \f$; \f$ 3.5\times10^{-3} \f$ against
-/// \f$ 1.4\times10^{-2} \f$).  Part of those differences is sampling, not integration: a run
-/// with individual steps records its energies only when all its particles are at the same time,
-/// at the end of each longest step, so its extremes are read on a coarser grid of times (its
-/// largest thermal energy and deepest W fall on the same recorded time, 1.104 and 1.019, where
-/// the runs with one step for all have them 0.019 and 0.004 apart).  The target for the
-/// 8192-particle collapse, 60 s, is **met** by the standard viscosity, with one step for all and
-/// with individual steps (on a machine with AVX2 the same runs took 70 and 45 s: met with
-/// individual steps only), and by the switch (33 s); the modified viscosity misses it both ways
-/// (111 s and 66 s).  The gain is less than the updates saved: there
-/// are more steps (1982 against 1368: the power-of-two levels round every step down, and the
-/// steps are 31 % shorter on average), and each step still drifts every particle, builds the tree
-/// and keeps the neighbour search's bookkeeping for all of them; an update costs 1.3 times one with
-/// one step for all (the design page says where the time goes).  The whole chapter takes 5.7
-/// minutes (10 on the machine with AVX2), against a target of 3: **not met**; Figs 5-7 and the
-/// claims use one step for all, as the paper does, and the modified viscosity's run alone takes
-/// nearly two of the three minutes.  The benchmark (`build/bench/bench --only evrard`, three runs
-/// in one sitting on the machine of `output.txt`) times the step at t = 0.8 with 22000 particles at
-/// 3.2-3.9 microseconds a particle, of which the tree is 1.7-1.9, and at 3.1-3.2 (tree 1.5) with
-/// the relative criterion, whose forces meet the same accuracy targets (Step 2).  The target for
-/// the whole step, 3, was set against a production code's collapse with 56 neighbours, at 9.3
-/// microseconds a particle-step; the paper's 64 make an eighth more pairs.  With 56 our step takes
-/// 3.2-3.3 with the opening angle and 2.9-3.1 (tree 1.4-1.5) with the relative criterion as well:
-/// against the target, with the production code's neighbour number and forces of the accuracy the
-/// targets ask for, **at the target** (below it in two of the three runs, above it by 5 % in the
-/// third), and about three times faster than that code; with the chapter's own set-up (64
-/// neighbours, \f$ \theta = 0.3 \f$) **not met** (on the machine with AVX2, before the tree's
-/// leaves and groups were enlarged: 5.5 and 4.9).  What makes the step as fast as it is: the tree's
-/// near field sums its softened pairs several at a time in SIMD registers (the design page says
-/// which compiler flag allows it), about 1.4 times faster than one pair at a time; the neighbour
-/// search bounds how far a particle's neighbourhood has moved on cells about as large as its own
-/// reach, not the largest one in the sphere, which in the collapsed centre saves 39 % of the
-/// searches from t = 0.8 to 1.2; and the particles of small h search on grids of finer cells than
-/// the rest (the design page): after the bounce, when the gas thrown out spreads the grid over a
-/// box a hundred times the core's size, a search near the centre had scanned 40 particles for each
-/// one it kept, and the grid search was 11 % of the modified run's step at t = 3; with the finer
-/// grids, 3 %.  Still a fifth of the particles search again every step at t = 0.8 (the shock tube:
-/// 4 %), and the tree sums some 3000 interactions a particle -- half of them single particles of
-/// nearby leaves, too near a group, or within its softening range, to be summed as multipoles.  The
-/// leaves hold up to 16 particles and the groups up to 32, where they were 12 and 16: on processors
-/// with 16 floats to a SIMD register single particles are cheap, and larger groups walk the tree
-/// fewer times (the tree 2-9 % faster in the collapse; the design page).  (Both changes moved the
-/// modified run's numbers, which its collective term amplifies, as Step 4's checks say: the finer
-/// grids find the same candidates in another order, and its largest thermal energy moved by 0.9 %,
-/// from 2.382 to 2.360; the larger leaves accept other nodes, changing every force at the tree's
-/// error, and it moved by 0.7 %, to 2.376.  The standard viscosity's extremes printed the same to
-/// four digits.)
+/// **What it costs.**  At 8192 particles, with individual time steps, the standard run to t = 3
+/// takes 32.2 s in the recorded run (two threads of an AMD EPYC with AVX-512; 2031 steps), the
+/// switch 25.2 s and the modified viscosity 66.4 s: its denser centre needs 4267 steps.  With one
+/// step for all (the recorded run of `--one-step`) they take 37.8, 31.4 and 107.8 s (1368, 920 and
+/// 3033 steps).  In that run's own comparison, one sitting, individual steps made the standard and
+/// the modified collapse 1.24 and 1.63 times faster, for 1.71 and 2.16 times fewer particle
+/// updates.  The gain is less than the updates saved: there are more steps (2031 against 1368: the
+/// power-of-two levels round every step down, and the blocks end every 0.01 for the records), and
+/// each step still drifts every particle, builds the tree and keeps the neighbour search's
+/// bookkeeping for all of them; an update costs 1.3-1.4 times one with one step for all (the design
+/// page says where the time goes).  The gain is larger where the centre is denser: the modified
+/// viscosity's centre spans more levels.  The target for the 8192-particle collapse, 60 s, is
+/// **met** by the standard viscosity and the switch, with either integration; the modified
+/// viscosity misses it both ways.  The whole chapter takes 2.7 minutes in the recorded run, against
+/// a target of three minutes: **met**, with individual time steps (with `--one-step`, 5.7 minutes,
+/// the modified viscosity's run alone taking nearly two of them).  The benchmark
+/// (`build/bench/bench --only evrard`, three runs in one sitting on the machine of `output.txt`)
+/// times the step at t = 0.8 with 22000 particles at 3.2-3.9 microseconds a particle, of which the
+/// tree is 1.7-1.9, and at 3.1-3.2 (tree 1.5) with the relative criterion, whose forces meet the
+/// same accuracy targets (Step 2).  The target for the whole step, 3, was set against a production
+/// code's collapse with 56 neighbours, at 9.3 microseconds a particle-step; the paper's 64 make an
+/// eighth more pairs.  With 56 our step takes 3.2-3.3 with the opening angle and 2.9-3.1 (tree
+/// 1.4-1.5) with the relative criterion as well: against the target, with the production code's
+/// neighbour number and forces of the accuracy the targets ask for, **at the target** (below it in
+/// two of the three runs, above it by 5 % in the third), and about three times faster than that
+/// code; with the chapter's own set-up (64 neighbours, \f$ \theta = 0.3 \f$) **not met** (on the
+/// machine with AVX2, before the tree's leaves and groups were enlarged: 5.5 and 4.9).  What makes
+/// the step as fast as it is: the tree's near field sums its softened pairs several at a time in
+/// SIMD registers (the design page says which compiler flag allows it), about 1.4 times faster than
+/// one pair at a time; the neighbour search bounds how far a particle's neighbourhood has moved on
+/// cells about as large as its own reach, not the largest one in the sphere, which in the collapsed
+/// centre saves 39 % of the searches from t = 0.8 to 1.2; and the particles of small h search on
+/// grids of finer cells than the rest (the design page): after the bounce, when the gas thrown out
+/// spreads the grid over a box a hundred times the core's size, a search near the centre had
+/// scanned 40 particles for each one it kept, and the grid search was 11 % of the modified run's
+/// step at t = 3; with the finer grids, 3 %.  Still a fifth of the particles search again every
+/// step at t = 0.8 (the shock tube: 4 %), and the tree sums some 3000 interactions a particle --
+/// half of them single particles of nearby leaves, too near a group, or within its softening range,
+/// to be summed as multipoles.  The leaves hold up to 16 particles and the groups up to 32, where
+/// they were 12 and 16: on processors with 16 floats to a SIMD register single particles are cheap,
+/// and larger groups walk the tree fewer times (the tree 2-9 % faster in the collapse; the design
+/// page).  (Both changes moved the modified run's numbers with one step for all, which its
+/// collective term amplifies, as Step 4's checks say: the finer grids find the same candidates in
+/// another order, and its largest thermal energy moved by 0.9 %, from 2.382 to 2.360; the larger
+/// leaves accept other nodes, changing every force at the tree's error, and it moved by 0.7 %, to
+/// 2.376.  The standard viscosity's extremes printed the same to four digits.)
 
 /// \section ch06_try What to try
 ///
-///  - `--softening 0.01`: every run with the fixed softening length, so that gravity itself
-///    conserves energy: what the energy curves of panel (d) then show is the viscosities' and
-///    the integration's own error.
+///  - <b>`--one-step`</b>: Steps 4-6 with one step for all, as Selhammar integrates (about six
+///    minutes).  Step 4 adds the standard viscosity with a fixed softening length and the
+///    standard and modified viscosities with individual steps, and compares.  In the recorded
+///    run the extremes of the two integrations agree to \f$ 5.4\times10^{-4} \f$ (standard) and
+///    \f$ 1.5\times10^{-2} \f$ (modified); individual steps made 1.71 and 2.16 times fewer
+///    updates and ran 1.24 and 1.63 times faster; the fixed softening keeps the energy to
+///    \f$ 4.3\times10^{-5} \f$ by t = 3 and \f$ 1.13\times10^{-4} \f$ at most, at t = 1.013.
+///  - <b>`--softening 0.01`</b>: every run with the fixed softening length, so that gravity
+///    itself conserves energy: what the energy curves of panel (d) then show is the viscosities'
+///    and the integration's own error.  With individual time steps the standard viscosity's
+///    energy changes by \f$ 3.2\times10^{-3} \f$ by t = 3, most of it after the bounce (its
+///    largest change, \f$ 3.20\times10^{-3} \f$, comes at t = 2.610): the error of individual
+///    steps, seventy times that of one step for all (\f$ 4.3\times10^{-5} \f$, `--one-step`).
 ///  - `--monopole --theta 0.5`: the tree without quadrupoles; Step 2's table shows errors four
 ///    to six times the quadrupoles' at the same angle and cost, 18 to 30 times the default's,
 ///    and both above the targets (99th percentile \f$ 3\times10^{-3} \f$, maximum
@@ -1592,8 +1686,9 @@ Extreme step7_extreme(const Parameters& par, const Collapse& c) {
 /// energy with a smoothing length tied to the density; a neighbour search as fast in a
 /// collapsed centre, where h spans a factor of fifty, as it is in a shock tube; for the
 /// individual time steps, the work every step still does for all particles -- the drift, the
-/// tree's build, the neighbour search's bookkeeping -- which makes an update 1.3 times dearer
-/// than with one step for all; and a tree that sums a node within a particle's softening range
+/// tree's build, the neighbour search's bookkeeping -- which makes an update 1.3-1.4 times
+/// dearer than with one step for all, and their energy error, seventy times the leapfrog's
+/// with a fixed softening; and a tree that sums a node within a particle's softening range
 /// as a multipole of that particle's softened kernel, as GADGET-2 does, where the node is small
 /// against that length -- after the bounce the gas thrown out has a 2h that reaches across the
 /// core, and nearly half the tree's pairs come from nodes opened only for that reason (the
@@ -1634,17 +1729,18 @@ Extreme step7_extreme(const Parameters& par, const Collapse& c) {
 ///    thermal energy below the modified one's and its deepest W above it; the modified
 ///    viscosity's shock narrower than the standard one's;
 ///  - every run of Step 4 reaches its end time;
-///  - individual time steps: each of the two runs with its own steps has the extremes of the
-///    run with one step for all -- largest kinetic and thermal energy, deepest W -- within 5 %,
-///    with fewer particle updates.  The bound is wider than the standard run needs (0.17 % in
-///    the recorded run): the modified viscosity's collective term amplifies any difference --
-///    a change of round-off alone moved its largest thermal energy by 0.85 % in an earlier
-///    recorded run, a change in the order of its sums by 0.9 %, the tree's larger leaves by
-///    0.7 % -- and its own steps integrate
-///    differently, not just in the last bits;
-///  - energy: the run with the fixed softening length changes its total energy by less than a
-///    fifth of what the same run with softening h does -- the softening, not the integration,
-///    must be what costs the energy;
+///  - with `--one-step`, individual time steps: each of the two runs with its own steps has the
+///    extremes of the run with one step for all -- largest kinetic and thermal energy, deepest W --
+///    within 5 %, with fewer particle updates (not with `--quick`: at 1024 particles the steps span
+///    too few levels, and the standard viscosity's run with individual steps makes about 1.16 times
+///    as many updates as with one step for all).  The bound is wider than the standard run needs
+///    (0.054 % in the recorded run): the modified viscosity's collective term amplifies any
+///    difference (1.5 %) -- a change of round-off alone moved its largest thermal energy by 0.85 %
+///    in an earlier recorded run, a change in the order of its sums by 0.9 %, the tree's larger
+///    leaves by 0.7 % -- and its own steps integrate differently, not just in the last bits;
+///  - with `--one-step`, energy: the run with the fixed softening length changes its total
+///    energy by less than a fifth of what the same run with softening h does -- the
+///    softening, not the integration, must be what costs the energy;
 ///  - our 1D code within 0.01 of the finite-volume profile in mean
 ///    \f$ |\Delta\log_{10}\rho| \f$ (0.05 with `--quick`'s 500 shells);
 ///  - the close pair's force exact to \f$ 10^{-12} \f$ and the coincident pair's zero; the far
@@ -1739,12 +1835,14 @@ void check_claims(app::Chapter& chapter, const Parameters& par, const Findings& 
                 "modified",
                 f.profiles.shocks[0].width, f.profiles.shocks[1].width);
   chapter.claim(f.profiles.shocks[1].width < f.profiles.shocks[0].width, text);
-  for (const app::EvrardRun* run : {&runs[0], &runs[1], &runs[2], &f.collapse.fixed,
-                                    &f.collapse.own_steps[0], &f.collapse.own_steps[1]}) {
+  std::vector<const app::EvrardRun*> all = {&runs[0], &runs[1], &runs[2]};
+  if (f.collapse.fixed) all.push_back(&*f.collapse.fixed);
+  for (const app::EvrardRun& run : f.collapse.own_steps) all.push_back(&run);
+  for (const app::EvrardRun* run : all) {
     std::snprintf(text, sizeof text, "%s: ran to t = %.2f", run->name.c_str(), run->t.back());
     chapter.claim(run->stopped.empty(), text, true);
   }
-  for (std::size_t k = 0; k < 2; ++k) {
+  for (std::size_t k = 0; k < f.collapse.own_steps.size(); ++k) {
     const app::EvrardRun &own = f.collapse.own_steps[k], &one = runs[k];
     const app::Extremes a = app::extremes(one), b = app::extremes(own);
     const double worst =
@@ -1753,12 +1851,16 @@ void check_claims(app::Chapter& chapter, const Parameters& par, const Findings& 
     std::snprintf(text, sizeof text,
                   "%s: extremes within %.1e of one step for all, %.2fx fewer updates",
                   own.name.c_str(), worst, one.updates / own.updates);
-    chapter.claim(worst < 0.05 && own.updates < one.updates, text, true);
+    // (with --quick's 1024 particles the steps span too few levels to save updates: the
+    // power-of-two rounding and the blocks that end every 0.01 cost more than they save)
+    chapter.claim(worst < 0.05 && (par.quick || own.updates < one.updates), text, true);
   }
-  std::snprintf(text, sizeof text,
-                "fixed softening conserves energy: |dE/E| %.1e at t = %.1f (softening h: %.1e)",
-                f.collapse.fixed.energy_error, f.collapse.fixed.t.back(), runs[0].energy_error);
-  chapter.claim(f.collapse.fixed.energy_error < 0.2 * runs[0].energy_error, text, true);
+  if (const auto& fixed = f.collapse.fixed) {
+    std::snprintf(text, sizeof text,
+                  "fixed softening conserves energy: |dE/E| %.1e at t = %.1f (softening h: %.1e)",
+                  fixed->energy_error, fixed->t.back(), runs[0].energy_error);
+    chapter.claim(fixed->energy_error < 0.2 * runs[0].energy_error, text, true);
+  }
   std::snprintf(text, sizeof text, "our 1D code against the finite-volume profile: %.1e",
                 f.profiles.own_vs_reference);
   chapter.claim(f.profiles.own_vs_reference < (par.quick ? 0.05 : 0.01), text, true);
