@@ -63,15 +63,16 @@
 /// (more than a quarter of the momentum scale).  Its energy is kept only because the leapfrog
 /// pays the work done on the velocities the collective term changes at the kicks (chapter 5); a
 /// leapfrog that does not loses 6 % of it by t = 3.  For the wall time spent, the modern switch
-/// is the most accurate in density from about 2 s of run time on (and its error falls fastest
+/// is the most accurate in density from about 2.5 s of run time on (and its error falls fastest
 /// with time), the modified viscosity in velocity at every resolution of the series (1024 to
 /// 8192 particles).  Softening gravity with the smoothing length costs up to 3 % of the energy at
-/// the bounce, half of which comes back; with one step for all a fixed softening length conserves
-/// it to \f$ 4\times10^{-5} \f$ by t = 3 (\f$ 1.1\times10^{-4} \f$ at most, at the bounce).
-/// Individual time steps -- each particle on the longest step its own limits allow -- make the
-/// collapses 1.2-1.6 times faster, the whole chapter run in under three minutes, and change the
-/// energy extremes by 1.5 % at most; but they do not conserve energy as the leapfrog with one
-/// step for all does.  Details in \ref ch06_findings "the findings".
+/// the bounce with one step for all, half of which comes back; there a fixed softening length
+/// conserves it to \f$ 4\times10^{-5} \f$ by t = 3 (\f$ 1.1\times10^{-4} \f$ at most, at
+/// t = 1.01, just before the bounce).  Individual time steps -- each particle on the longest step
+/// its own limits allow -- make the collapses to t = 3 1.3-1.7 times faster, the whole chapter
+/// run in under three minutes, and change the energy extremes by 1.5 % at most; but they do not
+/// conserve energy as the leapfrog with one step for all does: with the fixed softening they gain
+/// 0.3 % in the collapse.  Details in \ref ch06_findings "the findings".
 ///
 /// \section ch06_gravity The gravity of an SPH particle
 ///
@@ -187,10 +188,11 @@ struct FreeFall : sph::Scene<3> {
 /// The viscosities' coefficients are chapter 5's (\f$ \alpha = 1 \f$, \f$ \beta = 2 \f$,
 /// \f$ \eta = 1 \f$, the switch between 0.1 and 1, \f$ \nu^2 = 10^{-4}h^2 \f$), with 64
 /// neighbours.  The tree's opening angle and multipole order, the softening (0: the smoothing
-/// length; a positive value: that fixed length for every particle), the particle number of
-/// Figs 5-7 and the largest resolution of the error-against-run-time series are options.
-/// `--quick` runs every step with four to eight times fewer particles and stops Fig 5 at
-/// t = 1.3, for the test suite.
+/// length; a positive value: that fixed length for every particle, in the runs of Steps 3-7 --
+/// Steps 1 and 2 measure gravity as a run starts it, with h), the particle number of Figs 5-7,
+/// the largest resolution of the error-against-run-time series and the integration of Steps 4-6
+/// (`--one-step`) are options.  `--quick` runs every step with four to eight times fewer
+/// particles and stops Fig 5 at t = 1.3, for the test suite.
 ///
 /// The struct turns the numbers into the library's objects, so that every step builds its terms
 /// the same way: `standard()`, `restricted()`, `collective()` and `switch_av()` are the
@@ -463,7 +465,7 @@ DirectCheck step1_direct_summation(const Parameters& par) {
 /// summation's grows as \f$ N^2 \f$.
 ///
 /// **Measuring one tree.**  `measure_tree` builds a tree with one opening angle and order,
-/// evaluates it three times on the same particles and keeps the median wall time (one call is
+/// evaluates it seven times on the same particles and keeps the median wall time (one call is
 /// at the mercy of whatever else the machine does), and compares its accelerations with
 /// direct summation's particle by particle.  From the list of relative errors it keeps the
 /// median, the 90th and 99th percentiles and the maximum: the median says how good the typical
@@ -515,7 +517,9 @@ app::TreeAccuracy measure_tree(const sph::Particles<3>& p, const app::GravityFie
     tree.relative_accuracy = alpha;
     f = app::gravity_alone(tree, p);
   }
-  const double seconds = app::median_seconds(3, [&] { f = app::gravity_alone(tree, p); });
+  // (the median of seven: one evaluation takes about 10 ms, where a shared machine's noise is
+  // tens of per cent; with three, a recording once had the monopoles dearer than the quadrupoles)
+  const double seconds = app::median_seconds(7, [&] { f = app::gravity_alone(tree, p); });
   std::vector<double> error(p.size());
   for (std::size_t i = 0; i < p.size(); ++i)
     error[i] = (f.a[i] - exact.a[i]).norm() / exact.a[i].norm();
@@ -606,14 +610,14 @@ TreeStudy step2_tree(const app::Chapter& chapter, const Parameters& par) {
   return study;
 }
 
-/// **Reading the accuracy table.**  On 8192 particles direct summation takes 0.162 s an
+/// **Reading the accuracy table.**  On 8192 particles direct summation takes 0.160 s an
 /// evaluation.  The quadrupole tree at the default \f$ \theta = 0.3 \f$ has a median error of
 /// \f$ 7.34\times10^{-5} \f$, a 99th percentile of \f$ 3.18\times10^{-4} \f$ and a maximum of
 /// \f$ 7.50\times10^{-4} \f$, with 1579 interactions a particle; monopoles at the same angle and
 /// the same interaction count reach \f$ 2.81\times10^{-3} \f$ and \f$ 6.32\times10^{-3} \f$,
 /// within both targets but with little room under the stricter maximum
-/// (\f$ 7\times10^{-3} \f$).  The quadrupoles cost a little more time (0.064 of direct
-/// summation's against 0.059) for a 99th percentile nine times smaller.  Above
+/// (\f$ 7\times10^{-3} \f$).  The quadrupoles cost a little more time (0.058 of direct
+/// summation's against 0.053) for a 99th percentile nine times smaller.  Above
 /// \f$ \theta = 0.6 \f$ the interactions stay at 1189-1191 a particle and the maximum error at
 /// \f$ 6.84\times10^{-3} \f$ (quadrupoles) and \f$ 2.79\times10^{-2} \f$ (monopoles): there
 /// almost every node that the angle would accept is opened anyway, because it may hold a particle
@@ -634,20 +638,18 @@ TreeStudy step2_tree(const app::Chapter& chapter, const Parameters& par) {
 /// the tests, whose centre holds many particles with small forces -- the same \f$ \alpha \f$
 /// gives a largest error two fifths of the angle's, and on the collapsed sphere at t = 0.8 (22000
 /// particles, a development run) it takes 44 % fewer multipoles for a smaller largest error.
-/// In the right panel of the recorded run its 99th percentiles lie on the curve that the
-/// quadrupoles' points trace, or above it, by up to 1.4 times: at \f$ \alpha \le 10^{-3} \f$
-/// (0.061-0.068 of direct summation's time) on it or a little above, at \f$ 2\times10^{-3} \f$
-/// to \f$ 8\times10^{-3} \f$ (0.056-0.059) above it -- at 1276 interactions it takes the time
-/// of the angle's 1313.  Its maxima lie on the quadrupoles' curve up to
-/// \f$ \alpha = 2\times10^{-3} \f$ and below it at \f$ 4\times10^{-3} \f$ and
-/// \f$ 8\times10^{-3} \f$ (\f$ 1.8\times10^{-3} \f$, where the angle's curve at the same
-/// time is 1.3 to 2 times higher).  For the time it
-/// takes, the relative criterion buys nothing in the 99th percentile here, and a smaller worst
-/// error at the larger alphas: each of its tests costs more (a square root, and the particles'
-/// accelerations to gather), and on this sphere it has few cancelling pulls to exploit.  (In a run
-/// on a machine with AVX2 its points lay below and left of the line; an evaluation takes ten
-/// milliseconds, and such timings move from run to run.)  Counted in interactions, which carry no
-/// such noise, every relative row lies on the quadrupoles' line (within 4 %) or below it: 1365
+/// In the right panel of the recorded run its 99th percentiles lie above the curve that the
+/// quadrupoles' points trace, by 1.1 to 1.7 times (0.050-0.061 of direct summation's time; at
+/// 1276 interactions it takes about the time of the angle's 1313), and its maxima on that curve,
+/// except at \f$ \alpha = 8\times10^{-3} \f$ (\f$ 1.8\times10^{-3} \f$, where the angle's
+/// curve at the same time is 1.6 times higher).  These ratios move by a few tenths from one
+/// recording to the next: the times differ by a few per cent on curves that are steep.  For the
+/// time it takes, the relative criterion buys nothing in the 99th percentile here, and a smaller
+/// worst error at the larger alphas: each of its tests costs more (a square root, and the
+/// particles' accelerations to gather), and on this sphere it has few cancelling pulls to exploit.
+/// (In a run on a machine with AVX2 its points lay below and left of the line; an evaluation takes
+/// ten milliseconds, and such timings move from run to run.)  Counted in interactions, which carry
+/// no such noise, every relative row lies on the quadrupoles' line (within 4 %) or below it: 1365
 /// interactions give a 99th percentile of \f$ 4.79\times10^{-4} \f$ where the angle's line, between
 /// 0.3 and 0.4, gives about \f$ 5\times10^{-4} \f$.  (Its rows are measured with the accelerations
 /// of earlier evaluations at the same positions, the best case; in a run they are a step old.)  The
@@ -666,13 +668,14 @@ TreeStudy step2_tree(const app::Chapter& chapter, const Parameters& par) {
 /// \f$ N\log N \f$.
 ///
 /// In the recorded run direct summation's time grows about fourfold at each doubling of N
-/// (0.1668 s at 8192 particles, 0.6763 s at 16384, 2.6059 s at 32768), the tree's about twofold
-/// (0.0101 s, 0.0206 s, 0.0466 s, then 0.1011 s at 65536), so the tree's advantage grows with
-/// N: 16.5 times at 8192 particles, 55.9 at 32768.  Its time per particle rises from 1.23 to
-/// 1.54 microseconds between 8192 and 65536 particles, 1.25 times: about the
-/// \f$ \log N \f$ of the walk alone (1.23 times).  Other recordings on the same machine rose
-/// by 1.3-1.4 times, with a step near 32768 particles that we took for the walk outgrowing the
-/// processor's caches: one evaluation at a time, such timings move from run to run.  (A run on a
+/// (0.1607 s at 8192 particles, 0.6513 s at 16384, 2.5987 s at 32768), the tree's a little more
+/// than twofold (0.0093 s, 0.0228 s, 0.0462 s, then 0.1019 s at 65536), so the tree's advantage
+/// grows with N: 17.3 times at 8192 particles, 56.2 at 32768.  Its time per particle rises from
+/// 1.13 to 1.56 microseconds between 8192 and 65536 particles, 1.38 times, more than the
+/// \f$ \log N \f$ of the walk alone (1.23 times), and most of it in one step, here between 8192
+/// and 16384 particles.  Other recordings on the same machine rose by 1.25-1.4 times, with the
+/// step at 16384 or 32768 particles, which we take for the walk outgrowing the processor's
+/// caches: one evaluation at a time, such timings move from run to run.  (A run on a
 /// machine with AVX2, with the tree's earlier leaves of 12 and groups of 16, gave 2.13 and 3.06
 /// microseconds: timings vary with the machine, and on a shared one by a fifth or more from one run
 /// to the next; only ratios taken within one run compare two methods.)  Below 4096 particles the
@@ -696,7 +699,10 @@ void step2_cost_against_n(const app::Chapter& chapter, const Parameters& par, Tr
     const double td =
         run_direct ? app::median_seconds(1, [&] { app::gravity_alone(sph::DirectGravity{}, q); })
                    : -1.0;
-    const double tt = app::median_seconds(3, [&] { app::gravity_alone(par.tree(), q); });
+    // (softening h, as the accuracy study above: `--softening` is for the runs of Steps 3-7)
+    sph::TreeGravity tree = par.tree();
+    tree.fixed_softening = 0;
+    const double tt = app::median_seconds(3, [&] { app::gravity_alone(tree, q); });
     study.n.push_back(n);
     study.direct_seconds.push_back(td);
     study.tree_seconds.push_back(tt);
@@ -829,12 +835,12 @@ FreeFallResult step3_free_fall(const app::Chapter& chapter, const Parameters& pa
 /// disturbed body-centred lattice, stretched along each particle's ray so that the sphere has
 /// \f$ \rho = M/(2\pi R^2 r) \f$, \f$ R = M = G = 1 \f$, \f$ u = 0.05 \f$, \f$ \gamma = 5/3 \f$,
 /// at rest; 64 neighbours; the tree at its default opening angle; the step of eq 7.  Each
-/// viscosity runs to t = 3, and we record the kinetic, thermal and potential energy after every
-/// step.  The references are two one-dimensional calculations by codes independent of this
-/// project (chapters/06-self-gravity/reference/, with their provenance): the energies of a
-/// Lagrangian code with 4000 shells, and a finite-volume profile at t = 0.8 with 8000 cells.
-/// Our own Lagrangian code of chapter 5 runs the same collapse with 2000 shells, as a third
-/// opinion.
+/// viscosity runs to t = 3, and we record the kinetic, thermal and potential energy as it goes
+/// (below: with individual time steps, at least every 0.01).  The references are two
+/// one-dimensional calculations by codes independent of this project
+/// (chapters/06-self-gravity/reference/, with their provenance): the energies of a Lagrangian code
+/// with 4000 shells, and a finite-volume profile at t = 0.8 with 8000 cells.  Our own Lagrangian
+/// code of chapter 5 runs the same collapse with 2000 shells, as a third opinion.
 ///
 /// What happens.  The centre falls in first; by t = 0.8 a shock has formed there and moves out
 /// through the infalling gas; the kinetic energy peaks near t = 0.9 and the thermal energy near
@@ -860,14 +866,14 @@ FreeFallResult step3_free_fall(const app::Chapter& chapter, const Parameters& pa
 /// **The runs.**  One call of `run_collapse` (below) is one run: it gives the scene its
 /// integrator -- individual time steps, or with `--one-step` the leapfrog with one step for all
 /// -- and hands it to `app::run_evrard`, which builds the sphere, names the scene's terms and
-/// gravity, and records after every step the three energies, the densest
-/// particle, the least smoothing length and the least time step with what limited it (the
-/// numbers of Step 7).  It keeps a copy of the particles at t = 0.8 for Step 5, and the wall
-/// time and steps to there for Step 6.  A run that the simulation stops -- a time step below
-/// its minimum, a step budget exceeded -- returns what it recorded with the reason, so that the
-/// chapter can report it and fail its check instead of losing the other runs.  Before the runs,
-/// `app::load_evrard_reference` reads the two reference tables and runs our own Lagrangian code
-/// with 2000 shells (500 with `--quick`).
+/// gravity, and records the three energies (after every step with one step for all, at the end of
+/// every block with individual steps, below) and after every step the densest particle, the least
+/// smoothing length and the least time step with what limited it (the numbers of Step 7).  It keeps
+/// a copy of the particles at t = 0.8 for Step 5, and the wall time and steps to there for Step 6.
+/// A run that the simulation stops -- a time step below its minimum, a step budget exceeded --
+/// returns what it recorded with the reason, so that the chapter can report it and fail its check
+/// instead of losing the other runs.  Before the runs, `app::load_evrard_reference` reads the two
+/// reference tables and runs our own Lagrangian code with 2000 shells (500 with `--quick`).
 ///
 /// **Individual time steps.**  Each particle runs on its own time step
 /// (lib/sph/individual_leapfrog.hpp): the longest power-of-two fraction of a block of time that
@@ -876,9 +882,12 @@ FreeFallResult step3_free_fall(const app::Chapter& chapter, const Parameters& pa
 /// particles whose step ends are evaluated: their neighbours, density, forces and gravity; the
 /// others drift and carry predicted velocities.  Selhammar (1997) integrates with one step for
 /// all, the least any particle needs.  We do not by default, because of what it costs: in the
-/// collapse a few hundred particles in the centre need steps ten times shorter than the rest of
-/// the sphere, and one step for all pays for the centre everywhere.  The modified viscosity's
-/// collapse takes 1.6 times as long with one step for all, and only with individual steps does
+/// collapse the particles' own steps span a factor of ten and more, the centre's the shortest,
+/// and one step for all pays the centre's step everywhere.  Counted at every step of the runs
+/// with one step for all, power-of-two levels would make 1.9-2.4 times fewer updates over the
+/// whole run (Step 7's last column, with `--one-step`): on average a particle could skip every
+/// other step that the centre needs.  The modified viscosity's
+/// collapse takes 1.7 times as long with one step for all, and only with individual steps does
 /// the whole chapter run in three minutes.  `--one-step` runs Steps 4-6 as the paper does, and
 /// Step 4 then runs the standard and the modified viscosity once more with individual steps and
 /// compares: their energy extremes must agree to within the integration's error, and they do
@@ -886,7 +895,10 @@ FreeFallResult step3_free_fall(const app::Chapter& chapter, const Parameters& pa
 /// energies only where all its particles are at the same time, at the end of a block, and a
 /// block spans the longest step any particle allows -- up to 0.19 late in the collapse, too few
 /// records to draw the curves or read their peaks.  So `app::run_evrard` ends a block at least
-/// every 0.01 (about 300 records; 9 % more particle updates).
+/// every 0.01 (about 300 records; 9 % more particle updates in a development run of the standard
+/// viscosity).  The peaks are then read on a grid of 0.01, which can lower a peak by
+/// \f$ 2\times10^{-4} \f$ to \f$ 10^{-3} \f$ of itself: the size of the two integrations'
+/// difference in the standard viscosity's extremes.
 ///
 /// **Why a fixed softening of 0.01** (the run that `--one-step` adds).  A fixed length makes the
 /// softened potential a function of the positions alone, so the leapfrog conserves the total
@@ -895,13 +907,16 @@ FreeFallResult step3_free_fall(const app::Chapter& chapter, const Parameters& pa
 /// smoothing length the standard run reaches at its densest (\f$ 1.05\times10^{-2} \f$, Step 7),
 /// so gravity is softened less than with h everywhere -- by a few per cent in the collapsed
 /// centre, by far more in the rest of the sphere, where h is larger -- and never on a scale the
-/// gas resolves.  It is run with one step for all: individual time steps do not conserve energy
+/// gas resolves.  (`--softening 0.01` applies it to every run; for the modified viscosity, whose h
+/// falls to 0.006, 0.01 softens the centre more than h does, and its extremes move by up to 5 %.)
+/// It is run with one step for all: individual time steps do not conserve energy
 /// as that leapfrog does, and their own error would hide what the fixed length is meant to show
 /// (\ref ch06_findings "the findings").
 
 struct Collapse {
   std::vector<app::EvrardRun> runs;  // standard, modified, switch
-  std::string integration;           // how they were integrated, for the figures' stamps
+  std::string softening;             // "h" or the fixed length, for the figures
+  std::string integration;           // how they were integrated, for the figures
   // With `--one-step` only: the standard viscosity with a fixed softening length, and the
   // standard and modified viscosity once more with individual time steps.
   std::optional<app::EvrardRun> fixed;
@@ -1017,6 +1032,7 @@ Collapse step4_energies(const app::Chapter& chapter, const Parameters& par,
   using Tree = sph::TreeGravity;
   const bool own = !par.one_step;
   c.integration = own ? "individual time steps" : "one step for all";
+  c.softening = par.softening > 0 ? app::format("%g", par.softening) : "h";
   std::printf("  %s\n", own ? "individual time steps (--one-step: one step for all, as the paper)"
                             : "one step for all, as the paper");
   c.runs.push_back(run_collapse<Standard<Tree>>(own, "standard", setup, {{}, par.standard()}, tree,
@@ -1039,7 +1055,7 @@ Collapse step4_energies(const app::Chapter& chapter, const Parameters& par,
   print_energy_table(c, par);
   app::save_evrard_energy_figure(chapter.figure_path("fig5_energies.png").string(), c.runs,
                                  c.fixed ? &*c.fixed : nullptr, c.reference, c.fixed_softening,
-                                 c.integration);
+                                 c.softening, c.integration);
   return c;
 }
 
@@ -1135,13 +1151,15 @@ Profiles step5_profiles(const app::Chapter& chapter, const Collapse& c) {
   }
   app::save_evrard_profile_figure(
       chapter.figure_path("fig6_standard.png").string(), c.runs[0], ref,
-      "Evrard collapse at t = 0.8, standard viscosity (Selhammar Fig 6)", c.integration);
+      "Evrard collapse at t = 0.8, standard viscosity (Selhammar Fig 6)", c.softening,
+      c.integration);
   app::save_evrard_profile_figure(
       chapter.figure_path("fig7_modified.png").string(), c.runs[1], ref,
-      "Evrard collapse at t = 0.8, modified viscosity (Selhammar Fig 7)", c.integration);
+      "Evrard collapse at t = 0.8, modified viscosity (Selhammar Fig 7)", c.softening,
+      c.integration);
   app::save_evrard_profile_figure(chapter.figure_path("fig_switch.png").string(), c.runs[2], ref,
                                   "Evrard collapse at t = 0.8, the Morris & Monaghan switch",
-                                  c.integration);
+                                  c.softening, c.integration);
   return result;
 }
 
@@ -1155,7 +1173,7 @@ Profiles step5_profiles(const app::Chapter& chapter, const Collapse& c) {
 /// means here per second of wall time on the machine's two threads, what a user waits for).
 /// Below 4096 particles a step runs on one thread (two would not be faster: starting them costs
 /// more than the work), so the wall time grows 2.3-2.5 times from 1024 to 2048 particles,
-/// 1.3-1.7 times from 2048 to 4096, where the second thread starts, and 2.3-2.7 times from 4096 to
+/// 1.4 times from 2048 to 4096, where the second thread starts, and 2.4-2.7 times from 4096 to
 /// 8192: the cost slopes below are those of the time a user waits, threads included.  Every run
 /// integrates as Step 4's do (individual time steps; with `--one-step` one step for all), and the
 /// runs at Fig 5's particle number are Step 4's, timed to t = 0.8.  The figure is
@@ -1232,26 +1250,28 @@ Cost step6_error_against_run_time(const app::Chapter& chapter, const Parameters&
   }
   std::printf("%s", cost.study.table().c_str());
   app::ErrorFigureOptions options;
-  options.stamp = plot::format_stamp({.kernel = "M4",
-                                      .neighbours = 64,
-                                      .extra = "tree gravity, softening = h; " + c.integration +
-                                               "; reference: 1D finite volume, 8000 cells"});
+  options.stamp =
+      plot::format_stamp({.kernel = "M4",
+                          .neighbours = 64,
+                          .extra = "tree gravity, softening = " + c.softening + "; " +
+                                   c.integration + "; reference: 1D finite volume, 8000 cells"});
   app::save_error_figure(cost.study, chapter.figure_path("evrard_error_vs_time.png"), options);
   return cost;
 }
 
 /// **Reading the cost slopes.**  The order says how fast a method converges; the cost slope
 /// says what a second of computing buys, which is the question of this step.  In the recorded
-/// run, from 1024 to 8192 particles, the slopes in \f$ L_1(\log_{10}\rho) \f$ are -0.20
-/// (standard), -0.15 (modified) and -0.35 (switch), and in \f$ L_1(v_r) \f$ -0.28, -0.16 and
-/// -0.40: the switch gains the most accuracy per doubling of the time in both, the modified
+/// run, from 1024 to 8192 particles, the slopes in \f$ L_1(\log_{10}\rho) \f$ are -0.24
+/// (standard), -0.14 (modified) and -0.32 (switch), and in \f$ L_1(v_r) \f$ -0.33, -0.15 and
+/// -0.38: the switch gains the most accuracy per doubling of the time in both, the modified
 /// viscosity the least -- though in velocity it starts far lower, which is why it is still
 /// ahead at these resolutions (\ref ch06_findings "the findings").  The energy error falls
 /// faster than \f$ \Delta x \f$, at orders 1.72, 2.51 and 1.85.  (With one step for all, in the
-/// recorded run of `--one-step`, the slopes in density are shallower, -0.17, -0.12 and -0.26,
-/// and the orders nearly the same: individual steps save the most at the larger particle
-/// numbers, whose centres span more levels, and below 4096 particles, on one thread, they are
-/// sometimes slower than one step for all.)
+/// recorded run of `--one-step`, the slopes are shallower, -0.18, -0.12 and -0.25 in density,
+/// -0.25, -0.13 and -0.29 in velocity, and the orders nearly the same: individual steps save the
+/// most at the larger particle numbers, whose centres span more levels, and below 4096
+/// particles, on one thread, they were slower than one step for all in four of the six runs --
+/// a comparison across two sittings, whose timings differ by a tenth or more.)
 
 /// \section ch06_extreme Step 7: stiff and extreme cases
 ///
@@ -1289,7 +1309,10 @@ struct Extreme {
 /// it is the Courant condition of eq 7 (the modified viscosity and the switch in the recorded
 /// run); where the limiter cut a neighbour's step short to stay within four times a particle
 /// that has just started a short one, it says "neighbour's step" (the standard viscosity).
-/// Either way the denser centre costs steps through its smaller h.  With one step for all
+/// Either way it is a power-of-two fraction of a block of at most 0.01 (the modified
+/// viscosity's \f$ 3.12\times10^{-4} \f$ is 0.01/32), rounded down from what eq 7 allows, and
+/// so not the same quantity as the least step of a run with one step for all.  And the denser
+/// centre costs steps through its smaller h.  With one step for all
 /// (`--one-step`) every least step of the recorded run is eq 7's.
 ///
 /// The last column, with one step for all, asks what individual time steps would save.  After
@@ -1439,9 +1462,12 @@ Extreme step7_extreme(const Parameters& par, const Collapse& c) {
 
 /// \section ch06_findings The findings
 ///
-/// The numbers below are from the run at the default options (8192 particles, 2 threads); the
-/// chapter prints them all, and `figures/06-self-gravity/output.txt` holds the output of the
-/// run that drew the figures.
+/// The numbers below are from the run at the default options (8192 particles, 2 threads,
+/// individual time steps); the chapter prints them all, and `figures/06-self-gravity/output.txt`
+/// holds the output of the run that drew the figures.  The numbers said to be with one step for
+/// all are those of the run with `--one-step` (`figures/06-self-gravity/try/one_step.txt`), and
+/// those of `--softening 0.01` are in `try/softening_0.01.txt`; the few from development runs
+/// outside the chapter are marked as such.
 ///
 /// **Gravity.**  Direct summation gives the uniform sphere's \f$ W = -\tfrac35 \f$ to
 /// \f$ 1.6\times10^{-3} \f$ at 32768 particles, the difference falling as \f$ N^{-0.68} \f$
@@ -1451,7 +1477,7 @@ Extreme step7_extreme(const Parameters& par, const Collapse& c) {
 /// \f$ 7.5\times10^{-4} \f$ (both targets met with a factor 9 to spare); monopoles at
 /// the same angle: \f$ 2.8\times10^{-3} \f$ and \f$ 6.3\times10^{-3} \f$.  Its net force is
 /// \f$ 9\times10^{-7} \f$ of the forces' scale (direct summation: round-off).  One evaluation
-/// costs 1.23 microseconds per particle at 8192 particles and 1.54 at 65536 in the recorded run
+/// costs 1.13 microseconds per particle at 8192 particles and 1.56 at 65536 in the recorded run
 /// (two threads of a shared machine; the benchmark program measures it on a quiet one): the
 /// \f$ N\log N \f$ line of `tree_cost.png`.  Why \f$ \theta = 0.3 \f$ and not the 0.5-0.7 of
 /// many codes (whose angles measure nodes differently, Step 2): on this step's Evrard sphere
@@ -1463,7 +1489,7 @@ Extreme step7_extreme(const Parameters& par, const Collapse& c) {
 /// \f$ 6.94\times10^{-3} \f$; the relative criterion \f$ 7.44\times10^{-4} \f$ and
 /// \f$ 2.78\times10^{-3} \f$).  The price is small -- in an SPH code the
 /// near field, where every pair within twice the smoothing length is softened and summed one by
-/// one, is most of the work (1579 interactions a particle at 0.3, 1215 at 0.5; 16 % more
+/// one, is most of the work (1579 interactions a particle at 0.3, 1215 at 0.5; 18 % more
 /// time).  The free fall stays
 /// within \f$ 5\times10^{-3} \f$ of the analytic collapse up to 0.9 \f$ t_\mathrm{ff} \f$.
 ///
@@ -1505,35 +1531,49 @@ Extreme step7_extreme(const Parameters& par, const Collapse& c) {
 /// and switch 0.9 %), most of it the softening's error, which is largest in the modified
 /// viscosity's denser core: at the bounce, where the gas is most compressed, the change is
 /// \f$ 3.14\times10^{-2} \f$ at t = 1.023 (standard \f$ 1.66\times10^{-2} \f$ at 1.074, switch
-/// \f$ 1.73\times10^{-2} \f$; Step 4's second table), and about half of it comes back as the
-/// core re-expands -- the work that a varying softening leaves out is done as the smoothing
-/// lengths shrink and partly undone as they grow again.  The collective term conserves
-/// \f$ \Delta T + \Delta U = 0 \f$ in each kick (chapter 5), but it changes the velocities at the
-/// kicks, and the work that the pressure forces and gravity do on those changes was left unpaid --
-/// of first order in the step, and large, because the term relaxes a particle's velocity to its
-/// neighbourhood's within one step (its rate k, chapter 5's, times the step: \f$ k\,\delta t
-/// \approx 3 \f$-6 with eq 7's step).  The leapfrog now pays it (chapter 5 says how).  On
-/// 2048-particle runs to t = 1.1 with a fixed softening length, which isolates the viscosity, the
-/// modified viscosity's energy changes by \f$ 7.7\times10^{-4} \f$ with the payment and by 4.0 %
-/// without it (`sph::Leapfrog::work_of_term_kicks = false`), against \f$ 2\times10^{-5} \f$ for the
-/// standard viscosity; and the kinetic energy peaks at 0.59 either way, so the payment is not why
-/// the collapse goes too deep.  Since the collective term is not a pair force, momentum drifts by
-/// more than a quarter of \f$ \sum m|\mathbf v| \f$.
+/// \f$ 1.73\times10^{-2} \f$; Step 4's second table in that run), and about half of it comes back
+/// as the core re-expands -- the work that a varying softening leaves out is done as the smoothing
+/// lengths shrink and partly undone as they grow again.  The collective term conserves \f$ \Delta T
+/// + \Delta U = 0 \f$ in each kick (chapter 5), but it changes the velocities at the kicks, and the
+/// work that the pressure forces and gravity do on those changes was left unpaid -- of first order
+/// in the step, and large, because the term relaxes a particle's velocity to its neighbourhood's
+/// within one step (its rate k, chapter 5's, times the step: \f$ k\,\delta t \approx 3 \f$-6 with
+/// eq 7's step).  The leapfrog now pays it (chapter 5 says how).  On 2048-particle runs to t = 1.1
+/// with a fixed softening length, which isolates the viscosity, the modified viscosity's energy
+/// changes by \f$ 7.7\times10^{-4} \f$ with the payment and by 4.0 % without it
+/// (`sph::Leapfrog::work_of_term_kicks = false`), against \f$ 2\times10^{-5} \f$ for the standard
+/// viscosity; and the kinetic energy peaks at 0.59 either way, so the payment is not why the
+/// collapse goes too deep.  Since the collective term is not a pair force, momentum drifts by more
+/// than a quarter of \f$ \sum m|\mathbf v| \f$.
 ///
 /// **Individual time steps and the energy.**  The default runs, with individual time steps
-/// (Fig 5 d), change their energy less -- 0.56 %, 0.82 % and 0.50 % at t = 3, \f$ 1.44\times10^{-2}
-/// \f$, \f$ 2.62\times10^{-2} \f$ and \f$ 1.45\times10^{-2} \f$ at the bounce -- but not because
-/// they conserve better: they have an error of their own, which here partly cancels the
-/// softening's.  With the fixed softening (`--softening 0.01`, which runs every collapse with it)
-/// the standard viscosity's energy changes by \f$ 3.2\times10^{-3} \f$ by t = 3 with individual
-/// steps, against \f$ 4.3\times10^{-5} \f$ with one step for all.  A particle's kicks are not
-/// paired with its neighbours' when their steps differ -- the forces between them are equal and
-/// opposite only when both are evaluated at once -- and a step cut short by the limiter takes back
-/// a kick that was computed for a longer one.  This is what GADGET-2 and its successors accept for
-/// their speed; a course that wants to see the softening's cost alone runs `--one-step`.
-///
+/// (Fig 5 d), change their energy less -- 0.56 %, 0.82 % and 0.50 % at t = 3;
+/// \f$ 1.44\times10^{-2} \f$, \f$ 2.62\times10^{-2} \f$ and \f$ 1.45\times10^{-2} \f$ at the
+/// bounce -- but not because they conserve better: they have an error of their own, of the other
+/// sign.  With the fixed softening (`--softening 0.01`, which runs every collapse with it and,
+/// without `--one-step`, with individual steps) the standard viscosity's energy *rises*, by
+/// \f$ 3.2\times10^{-3} \f$ by t = 3, nearly all of it in the collapse and the bounce, from
+/// t = 0.6 to 1.2 (panel d of that run's Fig 5), against \f$ 4.3\times10^{-5} \f$ with one step
+/// for all; the switch's by \f$ 4.4\times10^{-3} \f$, the modified viscosity's by
+/// \f$ 6.9\times10^{-3} \f$.  With softening h that gain offsets part of the softening's loss:
+/// one step for all loses \f$ 8.8\times10^{-3} \f$ by t = 3 in the standard run, and
+/// \f$ 8.8\times10^{-3} - 3.2\times10^{-3} \f$ is the \f$ 5.6\times10^{-3} \f$ that the default
+/// run loses (the switch: 9.3 - 4.4 against 5.0, in units of \f$ 10^{-3} \f$; the modified
+/// viscosity, 14 - 6.9 against 8.2, adds less simply, its collapse being another with each
+/// integration).  Where the error comes from: the leapfrog conserves energy to its own small
+/// error because it is symmetric in time -- a kick, a drift, a kick, each particle's forces taken
+/// at the same moment as everyone else's.  With individual steps a particle on a short step is
+/// kicked by forces from neighbours on longer steps whose positions are only predicted, and those
+/// neighbours feel the pair's force back at other moments; and a step that the limiter cuts short
+/// takes back part of a kick computed for a longer one.  Neither is symmetric in time, and the
+/// error grows where the levels spread, in the collapse.  (Momentum drifts no more than with one
+/// step for all, \f$ 9.3\times10^{-5} \f$ against \f$ 8.4\times10^{-5} \f$ in the standard run:
+/// the tree's asymmetry dominates it either way.)  This is what GADGET-2 and its successors accept
+/// for their speed; a course that wants to see the softening's cost alone runs `--one-step`, or
+/// `--one-step --softening 0.01` for the fixed softening in all three viscosities.
+
 /// **Where the late kinetic energy sits.**  After the bounce the modified run keeps a kinetic
-/// energy near 0.4 to t = 3 (Fig 5 b), twice the reference's 0.21.  Step 4's third table says
+/// energy near 0.4 to t = 3 (Fig 5 b), twice the 0.20 of our 1D code.  Step 4's third table says
 /// where: at t = 3 the gas no longer bound to the rest holds 0.3638 of its 0.4022 -- 11.6 % of
 /// the mass, thrown off at the bounce -- and the drift of its centre of mass only 0.0133 (with
 /// one step for all: 0.3529 of 0.3847 in 11.5 %, drift 0.0086).  Our 1D code throws off 7.95 % of
@@ -1554,29 +1594,32 @@ Extreme step7_extreme(const Parameters& par, const Collapse& c) {
 /// less than a smoothing length there, the standard one's seven times it: "four times thinner"
 /// is as far as the bins resolve it, a lower bound on the ratio.  Also as he
 /// says, "the infalling gas is allowed to move inwards without deceleration until it meets the
-/// shock front": the modified viscosity's infall follows the reference to -1.6, where the standard
+/// shock front": the modified viscosity's infall follows the reference to its shock at -1.6, and
+/// goes on falling, to about -1.8, until its own shock at r = 0.088, where the standard
 /// viscosity's has been braked to -1.1.  **Not reproduced** is that this makes the profile more
 /// accurate: the modified viscosity's shock stands at r = 0.088, the reference's at 0.137 (standard
 /// 0.159, switch 0.152), and inside it the particles scatter in velocity from -1 to +0.3 and the
-/// core is twice too dense -- gas that has gone through the shock rather than been stopped by it.
+/// core is 1.5 to 2 times too dense -- gas that has gone through the shock rather than been
+/// stopped by it.
 ///
 /// **Error against run time** (`evrard_error_vs_time.png`, t = 0.8).  At 8192 particles
 /// \f$ L_1(\log_{10}\rho) \f$ is 0.100 (standard), 0.085 (modified), 0.081 (switch) and
-/// \f$ L_1(v_r) \f$ 0.164, 0.086, 0.115, in 4.0, 5.4 and 3.4 s (the run in `output.txt`, two
+/// \f$ L_1(v_r) \f$ 0.164, 0.086, 0.115, in 2.7, 5.5 and 3.9 s (the run in `output.txt`, two
 /// threads of a machine with AVX-512; with one step for all the errors agree to 1.5 % and the
-/// runs take 1.2-1.5 times as long).  From 1024 to 8192 particles the modified viscosity converges
-/// at order 0.42 in density, the standard one at 0.71 and the switch at 0.96.  With `--largest
-/// 65536` the series goes on to 65536 particles, and the lines part: there \f$ L_1(\log_{10}\rho)
-/// \f$ is 0.045 (standard, 87 s), 0.070 (modified, 164 s) and 0.035 (switch, 91 s), and \f$
-/// L_1(v_r) \f$ 0.067, 0.071 and 0.046 (a run with one step for all, `--one-step --particles 2048
-/// --largest 65536`, about 15 minutes, on the machine of `output.txt`, whose rows up to 8192
-/// particles are those of the recorded run of `--one-step` to the digit). The modified viscosity's
-/// errors stall (order 0.36 from 1024 to 65536 particles, the others 0.95-1.2): what limits it is
-/// not resolution but the gas it lets through the shock.  Does the modified viscosity buy accuracy
-/// per CPU second in the collapse it was designed for?  In velocity, up to about 32768 particles,
-/// yes: its infall is right, and with 1024 particles it beats the standard viscosity's
-/// 8192-particle \f$ L_1(v_r) \f$ in a fifth of the time.  In density, and beyond that resolution,
-/// no; and its energy error is the largest.  The switch is the best buy of the three.
+/// runs take 1.1-1.4 times as long, in another sitting).  From 1024 to 8192 particles the modified
+/// viscosity converges at order 0.42 in density, the standard one at 0.71 and the switch at 0.96.
+/// With `--largest 65536` the series goes on to 65536 particles, and the lines part: there \f$
+/// L_1(\log_{10}\rho) \f$ is 0.045 (standard, 87 s), 0.070 (modified, 164 s) and 0.035 (switch, 91
+/// s), and \f$ L_1(v_r) \f$ 0.067, 0.071 and 0.046 (a run with one step for all, `--one-step
+/// --particles 2048 --largest 65536`, about 15 minutes, on the machine of `output.txt`, whose rows
+/// up to 8192 particles are those of the recorded run of `--one-step` to the digit).  The modified
+/// viscosity's errors stall (order 0.36 from 1024 to 65536 particles, the others 0.95-1.2): what
+/// limits it is not resolution but the gas it lets through the shock.  Does the modified viscosity
+/// buy accuracy per CPU second in the collapse it was designed for?  In velocity, up to about 32768
+/// particles (in the series with one step for all), yes: its infall is right, and with 1024
+/// particles it beats the standard viscosity's 8192-particle \f$ L_1(v_r) \f$ in under a quarter of
+/// the time.  In density, and beyond that resolution, no; and its energy error is the largest.  The
+/// switch is the best buy of the three.
 ///
 /// **Extreme cases.**  The standard run's centre reaches \f$ \rho = 302 \f$ (1270 times the mean
 /// density), the modified one's 1770, with h down to 0.006 and a step of
@@ -1593,19 +1636,22 @@ Extreme step7_extreme(const Parameters& par, const Collapse& c) {
 /// \f$ 3\times10^{-7} \f$.
 ///
 /// **What it costs.**  At 8192 particles, with individual time steps, the standard run to t = 3
-/// takes 32.2 s in the recorded run (two threads of an AMD EPYC with AVX-512; 2031 steps), the
-/// switch 25.2 s and the modified viscosity 66.4 s: its denser centre needs 4267 steps.  With one
-/// step for all (the recorded run of `--one-step`) they take 37.8, 31.4 and 107.8 s (1368, 920 and
+/// takes 28.3 s in the recorded run (two threads of an AMD EPYC with AVX-512; 2031 steps), the
+/// switch 26.2 s and the modified viscosity 68.9 s: its denser centre needs 4267 steps.  With one
+/// step for all (the recorded run of `--one-step`) they take 38.2, 32.3 and 109.5 s (1368, 920 and
 /// 3033 steps).  In that run's own comparison, one sitting, individual steps made the standard and
-/// the modified collapse 1.24 and 1.63 times faster, for 1.71 and 2.16 times fewer particle
-/// updates.  The gain is less than the updates saved: there are more steps (2031 against 1368: the
+/// the modified collapse 1.34 and 1.70 times faster, for 1.71 and 2.16 times fewer particle
+/// updates.  Only such a comparison in one sitting measures the gain: the same calculation timed
+/// in different sittings of this shared machine differed by up to a fifth, and below 4096
+/// particles (Step 6) individual steps are often the slower.  The gain is less than the
+/// updates saved: there are more steps (2031 against 1368: the
 /// power-of-two levels round every step down, and the blocks end every 0.01 for the records), and
 /// each step still drifts every particle, builds the tree and keeps the neighbour search's
-/// bookkeeping for all of them; an update costs 1.3-1.4 times one with one step for all (the design
+/// bookkeeping for all of them; an update costs 1.3 times one with one step for all (the design
 /// page says where the time goes).  The gain is larger where the centre is denser: the modified
 /// viscosity's centre spans more levels.  The target for the 8192-particle collapse, 60 s, is
 /// **met** by the standard viscosity and the switch, with either integration; the modified
-/// viscosity misses it both ways.  The whole chapter takes 2.7 minutes in the recorded run, against
+/// viscosity misses it both ways.  The whole chapter takes 2.6 minutes in the recorded run, against
 /// a target of three minutes: **met**, with individual time steps (with `--one-step`, 5.7 minutes,
 /// the modified viscosity's run alone taking nearly two of them).  The benchmark
 /// (`build/bench/bench --only evrard`, three runs in one sitting on the machine of `output.txt`)
@@ -1646,7 +1692,7 @@ Extreme step7_extreme(const Parameters& par, const Collapse& c) {
 ///    standard and modified viscosities with individual steps, and compares.  In the recorded
 ///    run the extremes of the two integrations agree to \f$ 5.4\times10^{-4} \f$ (standard) and
 ///    \f$ 1.5\times10^{-2} \f$ (modified); individual steps made 1.71 and 2.16 times fewer
-///    updates and ran 1.24 and 1.63 times faster; the fixed softening keeps the energy to
+///    updates and ran 1.34 and 1.70 times faster; the fixed softening keeps the energy to
 ///    \f$ 4.3\times10^{-5} \f$ by t = 3 and \f$ 1.13\times10^{-4} \f$ at most, at t = 1.013.
 ///  - <b>`--softening 0.01`</b>: every run with the fixed softening length, so that gravity
 ///    itself conserves energy: what the energy curves of panel (d) then show is the viscosities'
@@ -1664,12 +1710,12 @@ Extreme step7_extreme(const Parameters& par, const Collapse& c) {
 ///    `output.txt`) -- but at this chapter's 8192 particles the standard run to t = 1.6 took
 ///    0.92-1.01 of the time (three alternating pairs): there the near field, which the
 ///    criterion leaves as it is, is most of the tree's work.
-///  - `--eta 0 --softening 0.01`: the modified viscosity without its collective term; its
-///    energy is then conserved to about \f$ 10^{-3} \f$, and its kinetic energy still peaks
-///    above the reference's (0.50 at 2048 particles): the restricted term alone does not stop
-///    the gas either.
-///  - `--particles 2048 --largest 65536`: Fig 5 at a quarter of the particles (faster, shallower
-///    curves) and the error series up to 65536 particles (about ten minutes), where the
+///  - `--one-step --eta 0 --softening 0.01 --particles 2048`: the modified viscosity without its
+///    collective term, with one step for all; its energy is then conserved to about \f$ 10^{-3}
+///    \f$, and its kinetic energy still peaks above the reference's (0.50 at 2048 particles): the
+///    restricted term alone does not stop the gas either.
+///  - `--one-step --particles 2048 --largest 65536`: Fig 5 at a quarter of the particles (faster,
+///    shallower curves) and the error series up to 65536 particles (about 15 minutes), where the
 ///    modified viscosity's errors stall and the switch's keep falling.
 ///  - `build/tests/test_sph "the collective term in a collapse*"`: a 512-particle collapse
 ///    with the collective term, with and without the leapfrog's payment of its kicks' work, at
@@ -1686,7 +1732,7 @@ Extreme step7_extreme(const Parameters& par, const Collapse& c) {
 /// energy with a smoothing length tied to the density; a neighbour search as fast in a
 /// collapsed centre, where h spans a factor of fifty, as it is in a shock tube; for the
 /// individual time steps, the work every step still does for all particles -- the drift, the
-/// tree's build, the neighbour search's bookkeeping -- which makes an update 1.3-1.4 times
+/// tree's build, the neighbour search's bookkeeping -- which makes an update 1.3 times
 /// dearer than with one step for all, and their energy error, seventy times the leapfrog's
 /// with a fixed softening; and a tree that sums a node within a particle's softening range
 /// as a multipole of that particle's softened kernel, as GADGET-2 does, where the node is small
@@ -1734,10 +1780,11 @@ Extreme step7_extreme(const Parameters& par, const Collapse& c) {
 ///    within 5 %, with fewer particle updates (not with `--quick`: at 1024 particles the steps span
 ///    too few levels, and the standard viscosity's run with individual steps makes about 1.16 times
 ///    as many updates as with one step for all).  The bound is wider than the standard run needs
-///    (0.054 % in the recorded run): the modified viscosity's collective term amplifies any
-///    difference (1.5 %) -- a change of round-off alone moved its largest thermal energy by 0.85 %
-///    in an earlier recorded run, a change in the order of its sums by 0.9 %, the tree's larger
-///    leaves by 0.7 % -- and its own steps integrate differently, not just in the last bits;
+///    (0.054 % in the recorded `--one-step` run): the modified viscosity's collective term
+///    amplifies any difference (1.5 %) -- a change of round-off alone moved its largest thermal
+///    energy by 0.85 % in an earlier recorded run, a change in the order of its sums by 0.9 %, the
+///    tree's larger leaves by 0.7 % -- and its own steps integrate differently, not just in the
+///    last bits;
 ///  - with `--one-step`, energy: the run with the fixed softening length changes its total
 ///    energy by less than a fifth of what the same run with softening h does -- the
 ///    softening, not the integration, must be what costs the energy;

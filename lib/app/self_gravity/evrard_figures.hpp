@@ -42,9 +42,11 @@ inline void draw_energies(plot::Axes& ax, const EvrardRun& run, const EvrardRefe
 }
 
 /// The change of the total energy of each run relative to its start: the runs in \p runs
-/// (softening h) and, if given, \p fixed (a fixed softening length \p fixed_softening).
+/// (softening \p softening: "h" or a length) and, if given, \p fixed (a fixed softening length
+/// \p fixed_softening).
 inline void draw_energy_change(plot::Axes& ax, const std::vector<EvrardRun>& runs,
-                               const EvrardRun* fixed, double fixed_softening) {
+                               const std::string& softening, const EvrardRun* fixed,
+                               double fixed_softening) {
   // the change of the total energy relative to its start, and the range of all four curves
   double lowest = 0, highest = 0;
   const auto change = [&](const EvrardRun& run) {
@@ -59,7 +61,7 @@ inline void draw_energy_change(plot::Axes& ax, const std::vector<EvrardRun>& run
   const plot::Color colors[] = {plot::blue, plot::red, plot::green};
   for (std::size_t k = 0; k < runs.size(); ++k) {
     ax.line(runs[k].t, change(runs[k]),
-            {.label = runs[k].name + ", softening h", .color = colors[k], .width = 2});
+            {.label = runs[k].name + ", softening " + softening, .color = colors[k], .width = 2});
   }
   if (fixed) {
     char label[96];
@@ -76,21 +78,23 @@ inline void draw_energy_change(plot::Axes& ax, const std::vector<EvrardRun>& run
 
 }  // namespace evrard_figure_detail
 
-/// Draws the energies of the three \p runs (softening h) in panels (a)-(c) over the reference
-/// \p ref, and in panel (d) the change of their total energy and, if given, that of \p fixed,
-/// a run with the fixed softening length \p fixed_softening; \p integration says how the runs
-/// were integrated (in the stamp); writes the PNG to \p path.
+/// Draws the energies of the three \p runs in panels (a)-(c) over the reference \p ref, and in
+/// panel (d) the change of their total energy and, if given, that of \p fixed, a run with the
+/// fixed softening length \p fixed_softening.  \p softening is the runs' softening ("h" or a
+/// length) and \p integration how they were integrated, for the stamp and the labels; writes the
+/// PNG to \p path.
 inline void save_evrard_energy_figure(const std::string& path, const std::vector<EvrardRun>& runs,
                                       const EvrardRun* fixed, const EvrardReference& ref,
-                                      double fixed_softening, const std::string& integration) {
+                                      double fixed_softening, const std::string& softening,
+                                      const std::string& integration) {
   plot::Figure figure(2, 2, {.width = 1600, .height = 1300});
   figure.title("Evrard collapse: energies (Selhammar Fig 5)");
   figure.stamp(plot::Stamp{.kernel = "M4",
                            .neighbours = 64,
                            .particles = runs[0].particles,
                            .extra = "R = M = G = 1, u = 0.05, \\gamma = 5/3; tree gravity, "
-                                    "softening = h; " +
-                                    integration});
+                                    "softening = " +
+                                    softening + "; " + integration});
   const double t_end = runs[0].t.back();
   for (std::size_t k = 0; k < runs.size(); ++k) {
     plot::Axes& ax = figure.panel(static_cast<int>(k));
@@ -100,20 +104,21 @@ inline void save_evrard_energy_figure(const std::string& path, const std::vector
   }
   plot::Axes& ax = figure.panel(3);
   ax.title(fixed ? "total energy: the cost of softening with h"
-                 : "total energy: softening with h, " + integration)
+                 : "total energy: softening " + softening + ", " + integration)
       .xlabel("t  [code units]")
       .ylabel("[E_{tot}(t) - E_{tot}(0)] / |E_{tot}(0)|")
       .xlim(0, t_end);
-  evrard_figure_detail::draw_energy_change(ax, runs, fixed, fixed_softening);
+  evrard_figure_detail::draw_energy_change(ax, runs, softening, fixed, fixed_softening);
   figure.save_png(path);
 }
 
 /// Draws the radial velocity, density and pressure of every particle of \p run at t = 0.8
 /// against its distance from the centre of mass, over the finite-volume reference of \p ref,
-/// under the title \p title, with \p integration (how the run was integrated) in the stamp;
-/// writes the PNG to \p path.
+/// under the title \p title, with the run's softening \p softening ("h" or a length) and
+/// \p integration (how it was integrated) in the stamp; writes the PNG to \p path.
 inline void save_evrard_profile_figure(const std::string& path, const EvrardRun& run,
                                        const EvrardReference& ref, const std::string& title,
+                                       const std::string& softening,
                                        const std::string& integration) {
   const RadialProfile prof = radial_profile(run.at_08, run.centre_08);
   plot::Figure figure(1, 3, {.width = 1800, .height = 640});
@@ -122,8 +127,8 @@ inline void save_evrard_profile_figure(const std::string& path, const EvrardRun&
                            .neighbours = 64,
                            .particles = run.particles,
                            .run_time = run.seconds_08,
-                           .extra = "t = 0.8; tree gravity, softening = h; " + integration +
-                                    "; reference: 1D finite volume, 8000 cells"});
+                           .extra = "t = 0.8; tree gravity, softening = " + softening + "; " +
+                                    integration + "; reference: 1D finite volume, 8000 cells"});
   const std::vector<double>* particle_values[] = {&prof.v, &prof.rho, &prof.pressure};
   const std::vector<double>* reference_values[] = {&ref.v, &ref.rho, &ref.pressure};
   const char* labels[] = {"v_r  [code units]", "\\rho  [code units]", "P  [code units]"};
