@@ -389,7 +389,8 @@ void noise_sweep(const StaticSet<D>& s, double chosen_noise, NoiseStudy<D>& stud
 /// panel titles give the rms of the whole error vector, and the panels show its x-component
 /// only.  Panels (b)-(d) share one y range: the analytic range, widened to hold every
 /// method's values but the outer 0.5 % at either end, so that a few outliers do not flatten the
-/// curves.
+/// curves, and then raised by a quarter of its height, so that the legends in the upper right sit
+/// above the data.
 
 template <int D>
 NoiseStudy<D> fig2(const app::Chapter& chapter, const Parameters& par, const Sets<D>& sets) {
@@ -595,7 +596,7 @@ DisorderStudy<D> disorder(const Parameters& par, const Sets<D>& sets) {
 
 /// \section ch07_step8 Step 8: error against N, neighbours and run time
 ///
-/// Which operator buys the most accuracy per CPU second?  Two things set the error of a
+/// Which operator buys the most accuracy per second of run time?  Two things set the error of a
 /// second derivative on a glass: the smoothing, which shrinks as \f$ (kh)^2 \f$ when h does, and
 /// the noise of the glass, which at a fixed neighbour number does *not* shrink with N -- the
 /// particles are as disordered, relative to h, at any resolution (chapter 2 found the glass's
@@ -690,11 +691,11 @@ CostStudy cost(const Parameters& par, const Sets<3>& sets) {
 /// operators of Steps 1-8, `curl_curl` and `grad_div`, on the simulation's own neighbour list
 /// and densities.  The two must agree to round-off, since they are the same sums taken in
 /// another order: a larger difference would mean that the term in the step is not the operator
-/// the static tests measured.  What to look for: the difference \f$ 1.6\cdot 10^{-15} \f$;
+/// the static tests measured.  What to look for: the difference \f$ 1.9\cdot 10^{-15} \f$;
 /// the analytic error 0.0305, within the check's bound of 0.090 (half the
 /// \f$ (2\pi h)^2 \f$ of Step 1's 3D lattice); and the net force \f$ 4.98\cdot 10^{-4} \f$ of
 /// Watkins' form against
-/// \f$ 1.13\cdot 10^{-17} \f$ of Flebbe's.  The times are the medians of five pairs of
+/// \f$ 9.52\cdot 10^{-18} \f$ of Flebbe's.  The times are the medians of five pairs of
 /// evaluations, taken alternately so that both see the same state of the machine.
 
 struct PressureOnly : sph::Scene<3> {
@@ -877,7 +878,9 @@ void check_claims(app::Chapter& chapter, bool own_schemes, const Results& r) {
 /// The numbers are those of the output above (5000 particles, 30 neighbours in 2D and 60 in 3D;
 /// errors and amplitudes over \f$ 4\pi^2 \f$; 3D unless marked).  Every number except the times
 /// is deterministic: the sets come from fixed seeds and each particle's sums do not depend on
-/// the thread count.
+/// the thread count.  Only the two round-off-sized numbers of Step 9 (\f$ 1.9\times10^{-15} \f$
+/// and \f$ 9.52\times10^{-18} \f$ here) move in their last digits from one processor to
+/// another, with its vector width and the compiler's contractions.
 ///
 /// | Watkins et al. (1996) §3 | verdict | the numbers that decide it |
 /// |:--|:--|:--|
@@ -904,7 +907,8 @@ void check_claims(app::Chapter& chapter, bool own_schemes, const Results& r) {
 ///    zero; Brookshaw's Laplacian taken as a curl curl is wrong by the whole field (rms 0.69 =
 ///    0.977 times 0.707, the rms of its unit sine): it cannot model a bulk viscosity, nor shear
 ///    in a compressing flow.
-///  - **Error against run time.**  A two-pass method costs 2.4 times Brookshaw's pass.  On a
+///  - **Error against run time.**  A two-pass method costs 2.3 times Brookshaw's pass (2.2-2.4
+///    over Step 8's rows).  On a
 ///    glass and for a field without divergence Brookshaw is both cheaper and more accurate up to
 ///    20000 particles; its error bottoms out at 10000 (0.019) and is 0.022 at 40000 (the glass's
 ///    noise relative to the field grows as h shrinks), as Flebbe's does (0.033 to 0.036).
@@ -916,9 +920,11 @@ void check_claims(app::Chapter& chapter, bool own_schemes, const Results& r) {
 ///    and the analytic acceleration to 0.031 (rms, of the largest).  It does not conserve
 ///    momentum: its net force is \f$ 5\times10^{-4} \f$ of \f$ \sum_i m_i|\mathbf a_i| \f$ on the
 ///    settled set, where Flebbe's symmetric form gives \f$ 10^{-17} \f$.  One evaluation of the
-///    step with it costs 1.7 times the pressure force's at 5000 particles (the program's Step 9),
-///    and 1.6 times at 40000 in the bench (`build/bench/bench --only derivatives`, not in this
-///    program's output; the design page's table has its numbers).
+///    step with it costs 2.5 times the pressure force's at 5000 particles (the program's Step 9;
+///    the bench, 2.2 on two threads), and 1.6 times at 40000 in the bench
+///    (`build/bench/bench --only derivatives`, not in this program's output; the design page's
+///    table has its numbers): the ratio falls with N, as the pressure force's own cost grows
+///    faster.
 ///  - **Its time step.**  The term limits the step to
 ///    \f$ 0.125\,h^2\rho/(\mu_b + \frac43\mu_s) \f$, the constant Morris, Fox & Zhu (1997) use
 ///    for a one-pass Laplacian.  A two-pass operator damps a mode of wavenumber k at the rate

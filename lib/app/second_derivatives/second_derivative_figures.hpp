@@ -65,6 +65,7 @@ void four_panel_figure(const app::Chapter& chapter, const std::string& file,
     lo = std::min(lo, sorted[sorted.size() / 200]);
     hi = std::max(hi, sorted[sorted.size() - 1 - sorted.size() / 200]);
   }
+  hi += 0.25 * (hi - lo);  // (room above the data for the legends of the upper right)
   const std::string quantity = "(\\nabla\\times\\nabla\\times v)_x";
   for (std::size_t k = 0; k < results.size() && k < 3; ++k) {
     const MethodResult<D>& r = results[k];
@@ -182,7 +183,8 @@ inline void disorder_figure(const app::Chapter& chapter, const DisorderStudy<2>&
                            .extra = "glass moved by random offsets up to 2 spacings, then the "
                                     "Poisson set; densities with the self term, except the open "
                                     "markers (Fig 3's set without it); 2D: 30 neighbours, 3D: 60"});
-  auto draw = [&](plot::Axes& ax, const auto& study, const std::string& title) {
+  // (the paper's two sets are 3D: their scatter is marked on the 3D panel only)
+  auto draw = [&](plot::Axes& ax, const auto& study, const std::string& title, bool paper_sets) {
     ax.xscale(plot::Scale::log).yscale(plot::Scale::log);
     ax.xlabel("density scatter \\sigma_\\rho / \\rho")
         .ylabel("rms error of \\nabla\\times\\nabla\\times v / 4\\pi^2");
@@ -198,16 +200,18 @@ inline void disorder_figure(const app::Chapter& chapter, const DisorderStudy<2>&
                   .marker = method_style(all_methods[k]).marker,
                   .filled = false});
     }
-    ax.vline(0.004, {.label = "Watkins' settled set, \\sigma_\\rho = 0.004",
-                     .color = plot::grey,
-                     .style = plot::Dash::dotted});
-    ax.vline(0.281, {.label = "Watkins' random set, \\sigma_\\rho = 0.281",
-                     .color = plot::grey,
-                     .style = plot::Dash::dashed});
+    if (paper_sets) {
+      ax.vline(0.004, {.label = "Watkins' settled set, \\sigma_\\rho = 0.004",
+                       .color = plot::grey,
+                       .style = plot::Dash::dotted});
+      ax.vline(0.281, {.label = "Watkins' random set, \\sigma_\\rho = 0.281",
+                       .color = plot::grey,
+                       .style = plot::Dash::dashed});
+    }
     ax.legend(plot::Corner::upper_left);
   };
-  draw(figure.panel(0, 0), d2, "2D");
-  draw(figure.panel(0, 1), d3, "3D");
+  draw(figure.panel(0, 0), d2, "2D", false);
+  draw(figure.panel(0, 1), d3, "3D", true);
   figure.save_png(chapter.figure_path("disorder.png").string());
 }
 
@@ -253,10 +257,10 @@ inline void cost_figure(const app::Chapter& chapter, const CostStudy& study) {
     b.line(g, eg, style);
     c.line(t, et, style);
   }
-  // the smoothing error's slope at a fixed neighbour number, N^(-2/3), through Brookshaw's first
-  // point
+  // the smoothing error's slope at a fixed neighbour number, N^(-2/3), through Watkins' first
+  // point (the method whose error is the smoothing's; the others level off at their noise)
   if (!study.by_n.empty()) {
-    const double n0 = study.by_n.front().particles, e0 = study.by_n.front().rms[3];
+    const double n0 = study.by_n.front().particles, e0 = study.by_n.front().rms[0];
     const double n1 = study.by_n.back().particles;
     a.line(std::vector<double>{n0, n1}, std::vector<double>{e0, e0 * std::pow(n1 / n0, -2.0 / 3)},
            {.label = "\\propto N^{-2/3}", .color = plot::grey, .style = plot::Dash::dotted});
