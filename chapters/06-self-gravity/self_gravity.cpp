@@ -1654,16 +1654,17 @@ Extreme step7_extreme(const Parameters& par, const Collapse& c) {
 /// a target of three minutes: **met**, with individual time steps (with `--one-step`, 5.7 minutes,
 /// the modified viscosity's run alone taking nearly two of them).  The benchmark
 /// (`build/bench/bench --only evrard`, three runs in one sitting on the machine of `output.txt`)
-/// times the step at t = 0.8 with 22000 particles at 3.2-3.9 microseconds a particle, of which the
-/// tree is 1.7-1.9, and at 3.1-3.2 (tree 1.5) with the relative criterion, whose forces meet the
-/// same accuracy targets (Step 2).  The target for the whole step, 3, was set against a production
-/// code's collapse with 56 neighbours, at 9.3 microseconds a particle-step; the paper's 64 make an
-/// eighth more pairs.  With 56 our step takes 3.2-3.3 with the opening angle and 2.9-3.1 (tree
-/// 1.4-1.5) with the relative criterion as well: against the target, with the production code's
-/// neighbour number and forces of the accuracy the targets ask for, **at the target** (below it in
-/// two of the three runs, above it by 5 % in the third), and about three times faster than that
-/// code; with the chapter's own set-up (64 neighbours, \f$ \theta = 0.3 \f$) **not met** (on the
-/// machine with AVX2, before the tree's leaves and groups were enlarged: 5.5 and 4.9).  What makes
+/// times the step at t = 0.8 with 22000 particles at 3.2-3.4 microseconds a particle (median 3.35),
+/// of which the tree is 1.7, and at 3.0-3.1 (tree 1.4) with the relative criterion, whose forces
+/// meet the same accuracy targets (Step 2).  The target for the whole step, 3, was set against a
+/// production code's collapse with 56 neighbours, at 9.3 microseconds a particle-step; the paper's
+/// 64 make an eighth more pairs.  With 56 our step takes 3.1-3.2 with the opening angle and
+/// 2.6-3.0 (median 2.90, tree 1.3-1.4) with the relative criterion as well: against the target,
+/// with the production code's neighbour number and forces of the accuracy the targets ask for,
+/// **met** (all three runs below it; in an earlier sitting 2.9-3.1, two of three below), and about
+/// three times faster than that code; with the chapter's own set-up (64 neighbours,
+/// \f$ \theta = 0.3 \f$) **not met** (on the machine with AVX2, before the tree's leaves and groups
+/// were enlarged: 5.5 and 4.9).  What makes
 /// the step as fast as it is: the tree's near field sums its softened pairs several at a time in
 /// SIMD registers (the design page says which compiler flag allows it), about 1.4 times faster than
 /// one pair at a time; the neighbour search bounds how far a particle's neighbourhood has moved on
@@ -1706,7 +1707,7 @@ Extreme step7_extreme(const Parameters& par, const Collapse& c) {
 ///  - `--relative 0.001`: every run with the tree's relative criterion (Step 2); the energies
 ///    of Fig 5 hardly change, and the step at t = 0.8 takes 0.88 of the time (the bench,
 ///    22000 particles, on a machine with AVX2; 0.82-0.90 in four runs on the machine of
-///    `output.txt`) -- but at this chapter's 8192 particles the standard run to t = 1.6 took
+///    `output.txt`, 0.91-0.96 in three of a later sitting) -- but at this chapter's 8192 particles the standard run to t = 1.6 took
 ///    0.92-1.01 of the time (three alternating pairs): there the near field, which the
 ///    criterion leaves as it is, is most of the tree's work.
 ///  - `--one-step --eta 0 --softening 0.01 --particles 2048`: the modified viscosity without its
