@@ -1707,9 +1707,10 @@ Extreme step7_extreme(const Parameters& par, const Collapse& c) {
 ///  - `--relative 0.001`: every run with the tree's relative criterion (Step 2); the energies
 ///    of Fig 5 hardly change, and the step at t = 0.8 takes 0.88 of the time (the bench,
 ///    22000 particles, on a machine with AVX2; 0.82-0.90 in four runs on the machine of
-///    `output.txt`, 0.91-0.96 in three of a later sitting) -- but at this chapter's 8192 particles the standard run to t = 1.6 took
-///    0.92-1.01 of the time (three alternating pairs): there the near field, which the
-///    criterion leaves as it is, is most of the tree's work.
+///    `output.txt`, 0.91-0.96 in three of a later sitting) -- but at this chapter's 8192
+///    particles the standard run to t = 1.6 took 0.92-1.01 of the time (three alternating
+///    pairs): there the near field, which the criterion leaves as it is, is most of the tree's
+///    work.
 ///  - `--one-step --eta 0 --softening 0.01 --particles 2048`: the modified viscosity without its
 ///    collective term, with one step for all; its energy is then conserved to about \f$ 10^{-3}
 ///    \f$, and its kinetic energy still peaks above the reference's (0.50 at 2048 particles): the
