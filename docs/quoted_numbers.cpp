@@ -247,28 +247,14 @@ int check(const fs::path& root) {
       if (quoted_numbers(joined(item.lines)).empty()) continue;
       runs.insert(item.options.begin(), item.options.end());
     }
-    std::string body_outputs = recorded, body_names = "the output of the default run";
-    const std::string body_text = joined(body);
-    for (const std::string& options : runs) {
-      const fs::path run = figures / "try" / (slug(options) + ".txt");
-      if (body_text.find("`" + options + "`") == std::string::npos || !fs::exists(run)) continue;
-      body_outputs += read(run);
-      body_names += " or of " + options;
-    }
-    checked += static_cast<int>(quoted_numbers(body_text).size());
-    stale += report_stale(body, numbers_in(body_outputs), body_names);
-    for (const TryItem& item : items) {
-      const std::string text = joined(item.lines);
-      const auto numbers = quoted_numbers(text);
-      if (numbers.empty()) continue;
-      checked += static_cast<int>(numbers.size());
-      std::string outputs = recorded;
-      std::string names;
-      std::set<std::string> own(item.options.begin(), item.options.end());
+    // The outputs of the runs that `text` names in code font, and of those in `own`, appended
+    // to `outputs`, their options to `names`; a named run without a recorded output is stale.
+    const auto add_named_runs = [&](const std::string& text, const std::set<std::string>& own,
+                                    std::string& outputs, std::string& names) {
       for (const std::string& options : runs) {
-        const bool named =
-            own.count(options) > 0 || text.find("`" + options + "`") != std::string::npos;
-        if (!named) continue;
+        if (own.count(options) == 0 && text.find("`" + options + "`") == std::string::npos) {
+          continue;
+        }
         const fs::path run = figures / "try" / (slug(options) + ".txt");
         names += (names.empty() ? "" : ", ") + options;
         if (!fs::exists(run)) {
@@ -278,6 +264,22 @@ int check(const fs::path& root) {
         }
         outputs += read(run);
       }
+    };
+    const std::string body_text = joined(body);
+    std::string body_outputs = recorded, body_names;
+    add_named_runs(body_text, {}, body_outputs, body_names);
+    checked += static_cast<int>(quoted_numbers(body_text).size());
+    stale += report_stale(
+        body, numbers_in(body_outputs),
+        "the output of the default run" + (body_names.empty() ? "" : " or of " + body_names));
+    for (const TryItem& item : items) {
+      const std::string text = joined(item.lines);
+      const auto numbers = quoted_numbers(text);
+      if (numbers.empty()) continue;
+      checked += static_cast<int>(numbers.size());
+      std::string outputs = recorded, names;
+      add_named_runs(text, std::set<std::string>(item.options.begin(), item.options.end()), outputs,
+                     names);
       stale += report_stale(item.lines, numbers_in(outputs),
                             names.empty() ? "the default run (the item names no run of its own: "
                                             "write its options as <b>`--option value`</b>)"

@@ -863,17 +863,18 @@ FreeFallResult step3_free_fall(const app::Chapter& chapter, const Parameters& pa
 /// step measures the drift, and with `--one-step` runs the standard viscosity once more with a
 /// fixed softening length, for which it is conserved.
 ///
-/// **The runs.**  One call of `run_collapse` (below) is one run: it gives the scene its
-/// integrator -- individual time steps, or with `--one-step` the leapfrog with one step for all
-/// -- and hands it to `app::run_evrard`, which builds the sphere, names the scene's terms and
-/// gravity, and records the three energies (after every step with one step for all, at the end of
-/// every block with individual steps, below) and after every step the densest particle, the least
-/// smoothing length and the least time step with what limited it (the numbers of Step 7).  It keeps
-/// a copy of the particles at t = 0.8 for Step 5, and the wall time and steps to there for Step 6.
-/// A run that the simulation stops -- a time step below its minimum, a step budget exceeded --
-/// returns what it recorded with the reason, so that the chapter can report it and fail its check
-/// instead of losing the other runs.  Before the runs, `app::load_evrard_reference` reads the two
-/// reference tables and runs our own Lagrangian code with 2000 shells (500 with `--quick`).
+/// **The runs.**  One call of `run_viscosity` (below) is one run: it builds the terms of one of the
+/// three viscosities, gives the scene its integrator -- individual time steps, or with `--one-step`
+/// the leapfrog with one step for all -- and hands it to `app::run_evrard`, which builds the
+/// sphere, names the scene's terms and gravity, and records the three energies (after every step
+/// with one step for all, at the end of every block with individual steps, below) and after every
+/// step the densest particle, the least smoothing length and the least time step with what limited
+/// it (the numbers of Step 7).  It keeps a copy of the particles at t = 0.8 for Step 5, and the
+/// wall time and steps to there for Step 6.  A run that the simulation stops -- a time step below
+/// its minimum, a step budget exceeded -- returns what it recorded with the reason, so that the
+/// chapter can report it and fail its check instead of losing the other runs.  Before the runs,
+/// `app::load_evrard_reference` reads the two reference tables and runs our own Lagrangian code
+/// with 2000 shells (500 with `--quick`).
 ///
 /// **Individual time steps.**  Each particle runs on its own time step
 /// (lib/sph/individual_leapfrog.hpp): the longest power-of-two fraction of a block of time that the
@@ -922,18 +923,51 @@ struct Collapse {
   std::vector<app::EvrardRun> own_steps;
   app::EvrardReference reference;
   double fixed_softening = 0.01;
+
+  /// Every run, in the order of the tables: the three viscosities, then the `--one-step` ones.
+  std::vector<const app::EvrardRun*> all() const {
+    std::vector<const app::EvrardRun*> list;
+    for (const app::EvrardRun& run : runs) list.push_back(&run);
+    if (fixed) list.push_back(&*fixed);
+    for (const app::EvrardRun& run : own_steps) list.push_back(&run);
+    return list;
+  }
 };
+
+/// The three viscosities of Steps 4-6, in the order of their tables and figures.
+constexpr const char* viscosity_names[] = {"standard", "modified", "switch"};
 
 /// One collapse of the scene \p Scene, with individual time steps (\p own_steps) or one step
 /// for all; the other arguments are app::run_evrard's.
 template <class Scene>
 app::EvrardRun run_collapse(bool own_steps, const std::string& name, const sph::EvrardSetup& setup,
                             const typename Scene::Terms& terms, const sph::TreeGravity& tree,
-                            const sph::Settings& settings, double t_end, bool progress = true) {
+                            const sph::Settings& settings, double t_end, bool progress) {
   if (own_steps) {
     return app::run_evrard<OwnSteps<Scene>>(name, setup, terms, tree, settings, t_end, progress);
   }
   return app::run_evrard<Scene>(name, setup, terms, tree, settings, t_end, progress);
+}
+
+/// One collapse with viscosity \p k of viscosity_names, its terms built from \p par, with
+/// individual time steps (\p own_steps) or one step for all, and gravity \p tree; called
+/// \p name in its progress report (none without \p progress).
+app::EvrardRun run_viscosity(int k, bool own_steps, const std::string& name, const Parameters& par,
+                             const sph::EvrardSetup& setup, const sph::TreeGravity& tree,
+                             double t_end, bool progress = true) {
+  using Tree = sph::TreeGravity;
+  const sph::Settings settings = par.settings();
+  if (k == 0) {
+    return run_collapse<Standard<Tree>>(own_steps, name, setup, {{}, par.standard()}, tree,
+                                        settings, t_end, progress);
+  }
+  if (k == 1) {
+    return run_collapse<Modified<Tree>>(own_steps, name, setup,
+                                        {{}, par.restricted(), par.collective()}, tree, settings,
+                                        t_end, progress);
+  }
+  return run_collapse<Switch<Tree>>(own_steps, name, setup, {{}, par.switch_av()}, tree, settings,
+                                    t_end, progress);
 }
 
 /// **The table.**  One row per calculation: the largest kinetic and thermal energy and the
@@ -974,9 +1008,7 @@ void print_energy_table(const Collapse& c, const Parameters& par) {
   };
   row("4000-shell reference", r, 0, 0, 0, 0);
   row("ours, 1D, " + std::to_string(par.quick ? 500 : 2000) + " shells", own, 0, 0, 0, 0);
-  std::vector<const app::EvrardRun*> runs = {&c.runs[0], &c.runs[1], &c.runs[2]};
-  if (c.fixed) runs.push_back(&*c.fixed);
-  for (const app::EvrardRun& run : c.own_steps) runs.push_back(&run);
+  const std::vector<const app::EvrardRun*> runs = c.all();
   const auto name = [&c](const app::EvrardRun* run) {
     return c.fixed && run == &*c.fixed ? std::string("std., fixed softening") : run->name;
   };
@@ -1026,30 +1058,24 @@ Collapse step4_energies(const app::Chapter& chapter, const Parameters& par,
   c.reference = app::load_evrard_reference(reference_dir, par.quick ? 500 : 2000, par.t_end);
   sph::EvrardSetup setup;
   setup.particles = par.particles;
-  const sph::Settings settings = par.settings();
   const sph::TreeGravity tree = par.tree();
-  using Tree = sph::TreeGravity;
   const bool own = !par.one_step;
   c.integration = own ? "individual time steps" : "one step for all";
   c.softening = par.softening > 0 ? app::format("%g", par.softening) : "h";
   std::printf("  %s\n", own ? "individual time steps (--one-step: one step for all, as the paper)"
                             : "one step for all, as the paper");
-  c.runs.push_back(run_collapse<Standard<Tree>>(own, "standard", setup, {{}, par.standard()}, tree,
-                                                settings, par.t_end));
-  c.runs.push_back(run_collapse<Modified<Tree>>(
-      own, "modified", setup, {{}, par.restricted(), par.collective()}, tree, settings, par.t_end));
-  c.runs.push_back(run_collapse<Switch<Tree>>(own, "switch", setup, {{}, par.switch_av()}, tree,
-                                              settings, par.t_end));
+  for (int k = 0; k < 3; ++k) {
+    c.runs.push_back(run_viscosity(k, own, viscosity_names[k], par, setup, tree, par.t_end));
+  }
   if (par.one_step) {
     sph::TreeGravity fixed_tree = tree;
     fixed_tree.fixed_softening = c.fixed_softening;
-    c.fixed = app::run_evrard<Standard<Tree>>(
-        "standard, fixed softening", setup, {{}, par.standard()}, fixed_tree, settings, par.t_end);
-    c.own_steps.push_back(app::run_evrard<OwnSteps<Standard<Tree>>>(
-        "standard, own steps", setup, {{}, par.standard()}, tree, settings, par.t_end));
-    c.own_steps.push_back(app::run_evrard<OwnSteps<Modified<Tree>>>(
-        "modified, own steps", setup, {{}, par.restricted(), par.collective()}, tree, settings,
-        par.t_end));
+    c.fixed =
+        run_viscosity(0, false, "standard, fixed softening", par, setup, fixed_tree, par.t_end);
+    for (int k = 0; k < 2; ++k) {
+      c.own_steps.push_back(run_viscosity(k, true, std::string(viscosity_names[k]) + ", own steps",
+                                          par, setup, tree, par.t_end));
+    }
   }
   print_energy_table(c, par);
   app::save_evrard_energy_figure(chapter.figure_path("fig5_energies.png").string(), c.runs,
@@ -1220,31 +1246,20 @@ Cost step6_error_against_run_time(const app::Chapter& chapter, const Parameters&
   Cost cost;
   for (int n = 1024; n <= par.largest; n *= 2) cost.counts.push_back(n);
   if (par.quick) cost.counts = {512, 1024, 2048};
-  const sph::Settings settings = par.settings();
   const sph::TreeGravity tree = par.tree();
-  using Tree = sph::TreeGravity;
-  const char* names[] = {"standard", "modified", "switch"};
   const bool own = !par.one_step;
   for (int k = 0; k < 3; ++k) {
     for (int n : cost.counts) {
       sph::EvrardSetup setup;
       setup.particles = n;
-      app::EvrardRun run;
-      if (n == par.particles && c.runs[k].t.back() >= 0.8) {
-        run = c.runs[k];
-      } else if (k == 0) {
-        run = run_collapse<Standard<Tree>>(own, names[k], setup, {{}, par.standard()}, tree,
-                                           settings, 0.8, false);
-      } else if (k == 1) {
-        run = run_collapse<Modified<Tree>>(own, names[k], setup,
-                                           {{}, par.restricted(), par.collective()}, tree, settings,
-                                           0.8, false);
-      } else {
-        run = run_collapse<Switch<Tree>>(own, names[k], setup, {{}, par.switch_av()}, tree,
-                                         settings, 0.8, false);
+      const app::EvrardRun run =
+          n == par.particles && c.runs[k].t.back() >= 0.8
+              ? c.runs[k]
+              : run_viscosity(k, own, viscosity_names[k], par, setup, tree, 0.8, false);
+      if (!run.stopped.empty()) {
+        throw sph::Error(std::string(viscosity_names[k]) + ": " + run.stopped);
       }
-      if (!run.stopped.empty()) throw sph::Error(std::string(names[k]) + ": " + run.stopped);
-      cost.study.add(evrard_record(names[k], n, run, c.reference));
+      cost.study.add(evrard_record(viscosity_names[k], n, run, c.reference));
     }
   }
   std::printf("%s", cost.study.table().c_str());
@@ -1883,10 +1898,7 @@ void check_claims(app::Chapter& chapter, const Parameters& par, const Findings& 
                 "modified",
                 f.profiles.shocks[0].width, f.profiles.shocks[1].width);
   chapter.claim(f.profiles.shocks[1].width < f.profiles.shocks[0].width, text);
-  std::vector<const app::EvrardRun*> all = {&runs[0], &runs[1], &runs[2]};
-  if (f.collapse.fixed) all.push_back(&*f.collapse.fixed);
-  for (const app::EvrardRun& run : f.collapse.own_steps) all.push_back(&run);
-  for (const app::EvrardRun* run : all) {
+  for (const app::EvrardRun* run : f.collapse.all()) {
     std::snprintf(text, sizeof text, "%s: ran to t = %.2f", run->name.c_str(), run->t.back());
     chapter.claim(run->stopped.empty(), text, true);
   }
