@@ -16,16 +16,16 @@
 #include "app/chapter.hpp"
 #include "app/stopwatch.hpp"
 #include "plot/figure.hpp"
-#include "sph/diagnostics.hpp"
-#include "sph/penetration.hpp"
-#include "sph/riemann.hpp"
-#include "sph/sedov_solution.hpp"
+#include "sph/measures/diagnostics.hpp"
+#include "sph/measures/penetration.hpp"
+#include "sph/reference/riemann.hpp"
+#include "sph/reference/sedov_solution.hpp"
 #include "sph/setups/colliding_streams.hpp"
 #include "sph/setups/sedov.hpp"
 #include "sph/setups/shock_tube.hpp"
 #include "sph/simulation.hpp"
+#include "sph/terms/monaghan_gingold_1983.hpp"
 #include "sph/terms/pressure.hpp"
-#include "sph/viscosity/monaghan_gingold_1983.hpp"
 
 #include <algorithm>
 #include <cmath>

@@ -8,11 +8,11 @@
 
 #include "sph/derivatives/brookshaw_1985.hpp"
 #include "sph/derivatives/flebbe_1994.hpp"
-#include "sph/derivatives/watkins_1996.hpp"
+#include "sph/derivatives/watkins_1996_two_pass.hpp"
 #include "sph/setups/watkins_static.hpp"
 #include "sph/simulation.hpp"
 #include "sph/terms/pressure.hpp"
-#include "sph/viscosity/watkins_1996.hpp"
+#include "sph/terms/watkins_1996.hpp"
 
 #include <omp.h>
 

@@ -12,12 +12,12 @@
 // with individual time steps, and with both individual steps and the relative criterion.
 
 #include "sph/gravity/tree.hpp"
-#include "sph/individual_leapfrog.hpp"
+#include "sph/integration/individual_leapfrog.hpp"
 #include "sph/setups/evrard.hpp"
 #include "sph/simulation.hpp"
+#include "sph/terms/monaghan_gingold_1983.hpp"
 #include "sph/terms/pressure.hpp"
-#include "sph/viscosity/monaghan_gingold_1983.hpp"
-#include "sph/viscosity/selhammar_1997.hpp"
+#include "sph/terms/selhammar_1997.hpp"
 
 #include <algorithm>
 #include <chrono>

@@ -10,10 +10,10 @@
 
 #include "sph/gravity/direct.hpp"
 #include "sph/gravity/tree.hpp"
-#include "sph/initial_conditions.hpp"
+#include "sph/setups/initial_conditions.hpp"
 #include "sph/simulation.hpp"
+#include "sph/terms/monaghan_gingold_1983.hpp"
 #include "sph/terms/pressure.hpp"
-#include "sph/viscosity/monaghan_gingold_1983.hpp"
 
 #include <omp.h>
 

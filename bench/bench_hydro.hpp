@@ -7,10 +7,10 @@
 
 #include "sph/setups/shock_tube.hpp"
 #include "sph/simulation.hpp"
+#include "sph/terms/monaghan_gingold_1983.hpp"
+#include "sph/terms/morris_monaghan_1997.hpp"
 #include "sph/terms/pressure.hpp"
-#include "sph/viscosity/monaghan_gingold_1983.hpp"
-#include "sph/viscosity/morris_monaghan_1997.hpp"
-#include "sph/viscosity/selhammar_1997.hpp"
+#include "sph/terms/selhammar_1997.hpp"
 
 #include <omp.h>
 

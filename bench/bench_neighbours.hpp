@@ -13,7 +13,7 @@
 // densities of the two thread counts agree bitwise.
 
 #include "sph/density.hpp"
-#include "sph/initial_conditions.hpp"
+#include "sph/setups/initial_conditions.hpp"
 
 #include <omp.h>
 

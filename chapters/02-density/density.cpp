@@ -17,16 +17,16 @@
 ///
 /// Three pieces of machinery make the sum affordable and well defined, and they are the new
 /// library code of this chapter:
-///  - the **cell grid** (`lib/sph/cell_grid.hpp`) sorts the particles into cubes about half a
-///    kernel radius wide, so that the candidates of a particle are the few cells around it,
+///  - the **cell grid** (`lib/sph/neighbours/cell_grid.hpp`) sorts the particles into cubes about
+///    half a kernel radius wide, so that the candidates of a particle are the few cells around it,
 ///    with periodic images handled by shifting whole cells;
 ///  - the **neighbour search** (`lib/sph/neighbours.hpp`) chooses each h by a rule and builds a
 ///    symmetric list of pairs closer than \f$ 2\max(h_i, h_j) \f$, shared by every later pass;
 ///    the list does not depend on the number of threads, so neither does anything computed
 ///    from it;
-///  - the **initial conditions** (`lib/sph/initial_conditions.hpp`, `lib/sph/relax.hpp`)
-///    place particles on lattices, at random, or in a *settled* glass, and can calibrate the
-///    masses so that the SPH density is exactly what we intend.
+///  - the **initial conditions** (`lib/sph/setups/initial_conditions.hpp`,
+///    `lib/sph/setups/relax.hpp`) place particles on lattices, at random, or in a *settled* glass,
+///    and can calibrate the masses so that the SPH density is exactly what we intend.
 ///
 /// We use them to reproduce the density panels of Watkins et al. (1996) Figs 1a and 3a, and
 /// then ask a question the papers do not: how large is the density error of a lattice or a
@@ -53,11 +53,11 @@
 #include "app/stopwatch.hpp"
 #include "app/text.hpp"
 #include "plot/figure.hpp"
-#include "sph/convergence.hpp"
 #include "sph/density.hpp"
-#include "sph/initial_conditions.hpp"
+#include "sph/measures/convergence.hpp"
 #include "sph/neighbours.hpp"
-#include "sph/relax.hpp"
+#include "sph/setups/initial_conditions.hpp"
+#include "sph/setups/relax.hpp"
 #include "sph/setups/watkins_static.hpp"
 
 #include <algorithm>
@@ -263,7 +263,7 @@ RandomSets step2_random(app::Chapter& chapter, const Setup& s) {
 /// For equal masses and fixed h this is gradient descent (with a little momentum \f$ \mu \f$) on
 /// \f$ E = \sum_i m_i u(\rho_i) \approx \int \rho\, u(\rho)\, dV \f$, which for any
 /// \f$ \gamma > 0 \f$ is a convex functional of \f$ \rho \f$, smallest when the density is uniform.
-/// Two details matter in practice, and both are documented in `lib/sph/relax.hpp`:
+/// Two details matter in practice, and both are documented in `lib/sph/setups/relax.hpp`:
 ///  - the M4 gradient vanishes as \f$ r \to 0 \f$ (chapter 1, Fig. b), so two particles that
 ///    start close together barely repel; the relaxing force keeps the kernel's steepest slope
 ///    inside \f$ q = 2/3 \f$ (Thomas & Couchman 1992), and pairs separate;

@@ -175,9 +175,9 @@
 /// \section ch03_exact The exact solution, and how to read it
 ///
 /// Every number this chapter prints is measured against the exact solution of the Riemann
-/// problem (lib/sph/riemann.hpp, the exact solver of Toro's book), so it is worth knowing its
-/// shape before we look at any run.  Released at \f$ t = 0 \f$, Sod's interface breaks into
-/// four waves, whose speeds Step 1 prints: the head and the tail of a **rarefaction** running
+/// problem (lib/sph/reference/riemann.hpp, the exact solver of Toro's book), so it is worth
+/// knowing its shape before we look at any run.  Released at \f$ t = 0 \f$, Sod's interface breaks
+/// into four waves, whose speeds Step 1 prints: the head and the tail of a **rarefaction** running
 /// left into the dense gas (speeds \f$ -1.183 \f$ and \f$ -0.070 \f$), a **contact
 /// discontinuity** moving right with the gas (\f$ u_* = 0.927 \f$), and a **shock** running
 /// right into the thin gas (1.752).  At \f$ t = 0.2 \f$ they stand at \f$ x = -0.237 \f$,
@@ -203,8 +203,8 @@
 /// interface at \f$ x = \pm 1 \f$ stays far from the window we measure, masses calibrated as in
 /// chapter 2), the exact Riemann solver, the simulation loop, and a few additions: the
 /// colliding-stream set-up `lib/sph/setups/colliding_streams.hpp`, the penetration diagnostic
-/// `lib/sph/penetration.hpp`, and two runners that build a scene, integrate it and keep what we
-/// measure, `lib/app/shock_tube_run.hpp` (which chapter 4 shares) and
+/// `lib/sph/measures/penetration.hpp`, and two runners that build a scene, integrate it and keep
+/// what we measure, `lib/app/shock_tube_run.hpp` (which chapter 4 shares) and
 /// `lib/app/colliding_streams_run.hpp`.
 ///
 /// The steps hand their results on.  Step 1 makes the three runs of Sod's tube and returns
@@ -224,15 +224,15 @@
 #include "app/shock_tube_run.hpp"
 #include "app/text.hpp"
 #include "plot/figure.hpp"
-#include "sph/convergence.hpp"
-#include "sph/norms.hpp"
-#include "sph/penetration.hpp"
+#include "sph/measures/convergence.hpp"
+#include "sph/measures/norms.hpp"
+#include "sph/measures/penetration.hpp"
+#include "sph/measures/snapshot.hpp"
 #include "sph/setups/colliding_streams.hpp"
 #include "sph/setups/shock_tube.hpp"
 #include "sph/simulation.hpp"
-#include "sph/snapshot.hpp"
+#include "sph/terms/monaghan_gingold_1983.hpp"
 #include "sph/terms/pressure.hpp"
-#include "sph/viscosity/monaghan_gingold_1983.hpp"
 
 #include <algorithm>
 #include <array>
@@ -428,8 +428,8 @@ void set_resolution(Parameters& par) {
 /// speed of *every* particle, so even the gas at rest gets a step 2.2 times shorter.
 ///
 /// Each run's final state is also written as a snapshot in SPLASH's ASCII format
-/// (lib/sph/snapshot.hpp): `splash sod_no_viscosity_00001.dat` in the output directory shows
-/// the first run, particle by particle.
+/// (lib/sph/measures/snapshot.hpp): `splash sod_no_viscosity_00001.dat` in the output directory
+/// shows the first run, particle by particle.
 ///
 /// The mass calibration has nothing to correct in these runs: at \f$ h = \Delta x \f$ the lattice
 /// sum of the M4 kernel is exact (chapter 4, Step 2), so the interior of each side already has
@@ -485,7 +485,7 @@ SodRuns step1_sod_runs(const app::Chapter& chapter, const Parameters& par) {
 ///
 /// The first measure of a run is its distance from the exact solution: the \f$ L_1 \f$ norms
 /// of \f$ \rho \f$, \f$ v_x \f$ and \f$ P \f$ over the particles in \f$ -0.5 \le x \le 0.5 \f$
-/// (lib/sph/norms.hpp).  They are particle averages,
+/// (lib/sph/measures/norms.hpp).  They are particle averages,
 /// \f[ L_1(\rho) = \frac1N \sum_{|x_i| \le 0.5} |\rho_i - \rho_{\rm exact}(x_i, t)| , \f]
 /// so each region counts by the number of particles in it, which is to say by its mass.  The
 /// reference is any gas whose exact solution we know: Sod's gas, or the equivalent gas of the
@@ -975,8 +975,8 @@ app::StreamsRun<dim> run_streams(const std::string& name, const StreamsScene& sc
 
 /// \subsection ch03_inversions Counting particles that have passed each other
 ///
-/// sph::order_inversions (lib/sph/penetration.hpp) sorts the particles by their initial x and
-/// counts the pairs whose order has flipped.  It reports two counts, and the difference
+/// sph::order_inversions (lib/sph/measures/penetration.hpp) sorts the particles by their initial x
+/// and counts the pairs whose order has flipped.  It reports two counts, and the difference
 /// matters here.  *Adjacent* inversions -- initially neighbouring particles now in reverse
 /// order -- catch any local overturning, but two streams that pass through each other keep
 /// their own order: only the one pair that met first is adjacent and inverted.  *All*
@@ -1083,8 +1083,8 @@ StreamRuns<dim> step6_colliding_streams(const app::Chapter& chapter, const Param
 /// The last question of every chapter with a reference solution: how does the error fall as
 /// we pay for more particles?  We run Sod's tube at left spacings \f$ \Delta x = 1/100 \f$ to
 /// \f$ 1/3200 \f$ (`--levels` of them, doubling the resolution each time), without and with
-/// viscosity, and hand each run to sph::ErrorVsTime (lib/sph/convergence.hpp), which prints
-/// the table, fits the order p in \f$ L_1 \propto \Delta x^p \f$ and the cost slope s in
+/// viscosity, and hand each run to sph::ErrorVsTime (lib/sph/measures/convergence.hpp), which
+/// prints the table, fits the order p in \f$ L_1 \propto \Delta x^p \f$ and the cost slope s in
 /// \f$ L_1 \propto t_\mathrm{run}^s \f$.  For a shock tube p = 1 is the best one can hope
 /// for: the shock is smeared over a few h, and \f$ h \propto \Delta x \f$.  In 1D the cost
 /// grows like \f$ N^2 \f$ (N particles, and a time step \f$ \propto h \propto 1/N \f$), so

@@ -12,7 +12,7 @@
 /// measures it against an exact solution, in one, two and three dimensions, at several
 /// resolutions, and asks what accuracy each CPU second buys.
 ///
-/// What is new: the viscosity term (`lib/sph/viscosity/monaghan_gingold_1983.hpp`), the time
+/// What is new: the viscosity term (`lib/sph/terms/monaghan_gingold_1983.hpp`), the time
 /// step it implies, and a careful look at why the choice of \f$ h/\Delta x \f$ sets an error
 /// floor in 1D.  What is unchanged from chapter 3: the equations of motion, the leapfrog,
 /// the shock-tube set-up, the exact Riemann solver, and the runner that builds, integrates and
@@ -99,7 +99,7 @@
 /// only where particles come much closer than h, as they do in the colliding streams of chapter 3.
 ///
 /// In code, the whole term is one pure pair function that adds \f$ \Pi_{ij} \f$ to the bracket
-/// (lib/sph/viscosity/monaghan_gingold_1983.hpp), and a scene chooses it at compile time by
+/// (lib/sph/terms/monaghan_gingold_1983.hpp), and a scene chooses it at compile time by
 /// naming it in its list of terms (`ViscousGas` below).  A scene that does not name it
 /// (chapter 3's inviscid gas) contains no viscosity code at all.  The function computes the
 /// pair means \f$ \bar\rho_{ij} \f$ and \f$ \bar c_{ij} \f$ and \f$ \mu_{ij} \f$, which it sets to
@@ -134,14 +134,14 @@
 #include "app/shock_tube_run.hpp"
 #include "app/text.hpp"
 #include "plot/figure.hpp"
-#include "sph/convergence.hpp"
-#include "sph/boundaries.hpp"
+#include "sph/boundaries/fixed_particles.hpp"
+#include "sph/measures/convergence.hpp"
+#include "sph/measures/snapshot.hpp"
 #include "sph/setups/shock_tube.hpp"
 #include "sph/simulation.hpp"
-#include "sph/snapshot.hpp"
 #include "sph/terms/grad_h.hpp"
+#include "sph/terms/monaghan_gingold_1983.hpp"
 #include "sph/terms/pressure.hpp"
-#include "sph/viscosity/monaghan_gingold_1983.hpp"
 
 #include <omp.h>
 

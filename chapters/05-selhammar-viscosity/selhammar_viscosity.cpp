@@ -19,11 +19,12 @@
 /// must be read, reproduces its Figs 1-4, and compares the result with a viscosity switch of
 /// today, the time-dependent \f$ \alpha \f$ of Morris & Monaghan (1997).  Every scene is
 /// measured against a reference that does not come from SPH: a one-dimensional Lagrangian code
-/// (lib/sph/lagrangian_1d.hpp), which follows the gas in planar slabs or spherical shells.
+/// (lib/sph/reference/lagrangian_1d.hpp), which follows the gas in planar slabs or spherical
+/// shells.
 ///
-/// What is new in the library: the two terms (lib/sph/viscosity/selhammar_1997.hpp), the
-/// switch (lib/sph/viscosity/morris_monaghan_1997.hpp), the two set-ups
-/// (lib/sph/setups/selhammar_tests.hpp) and the Lagrangian reference.  What is unchanged: the
+/// What is new in the library: the two terms (lib/sph/terms/selhammar_1997.hpp), the
+/// switch (lib/sph/terms/morris_monaghan_1997.hpp), the two set-ups
+/// (lib/sph/setups/selhammar_problems.hpp) and the Lagrangian reference.  What is unchanged: the
 /// step of chapters 3-4, into which the terms plug through the slots of lib/sph/terms.hpp, the
 /// shock-tube runner, the exact Riemann solver and the error-against-run-time study.
 ///
@@ -130,16 +131,16 @@
 #include "app/shock_tube_run.hpp"
 #include "app/text.hpp"
 #include "plot/figure.hpp"
-#include "sph/convergence.hpp"
-#include "sph/diagnostics.hpp"
-#include "sph/lagrangian_1d.hpp"
-#include "sph/norms.hpp"
-#include "sph/setups/selhammar_tests.hpp"
+#include "sph/measures/convergence.hpp"
+#include "sph/measures/diagnostics.hpp"
+#include "sph/measures/norms.hpp"
+#include "sph/reference/lagrangian_1d.hpp"
+#include "sph/setups/selhammar_problems.hpp"
 #include "sph/simulation.hpp"
+#include "sph/terms/monaghan_gingold_1983.hpp"
+#include "sph/terms/morris_monaghan_1997.hpp"
 #include "sph/terms/pressure.hpp"
-#include "sph/viscosity/monaghan_gingold_1983.hpp"
-#include "sph/viscosity/morris_monaghan_1997.hpp"
-#include "sph/viscosity/selhammar_1997.hpp"
+#include "sph/terms/selhammar_1997.hpp"
 
 #include <algorithm>
 #include <cmath>
@@ -315,7 +316,7 @@ void print_headline(const Parameters& par) {
 ///
 /// Both of Selhammar's scenes have a symmetry that reduces them to one dimension: the weak tube
 /// is planar, the sphere spherical.  In one dimension a mesh can move with the gas, and that is
-/// what lib/sph/lagrangian_1d.hpp does.  Each zone is a fixed parcel of mass \f$ m_i \f$
+/// what lib/sph/reference/lagrangian_1d.hpp does.  Each zone is a fixed parcel of mass \f$ m_i \f$
 /// between two nodes; its density is its mass over its volume, \f$ \rho_i = m_i/V_i \f$, with
 /// \f$ V_i \f$ the slab's width or the shell's volume between the nodes, so the continuity
 /// equation holds exactly and a contact stays on one node.  The nodes are pushed by the
@@ -686,8 +687,8 @@ Readings step2_readings(const Parameters& par) {
 /// free end at the sound speed, 0.105, meets the rarefaction from the interface after
 /// \f$ t \approx 5 \f$, and the waves it sends on reach the contact and the shock well before
 /// t = 20.  So we measure against a solution of the whole tube: the Lagrangian code of
-/// lib/sph/lagrangian_1d.hpp, planar, with 4000 zones of equal mass, free at both ends.  The step
-/// prints how far that solution has moved from the Riemann solution by t = 20.
+/// lib/sph/reference/lagrangian_1d.hpp, planar, with 4000 zones of equal mass, free at both ends.
+/// The step prints how far that solution has moved from the Riemann solution by t = 20.
 ///
 /// Each of the three viscosities runs the tube; the step prints the \f$ L_1 \f$ errors of
 /// \f$ v_z \f$, P and \f$ \rho \f$ over all particles against the reference, the steps, the wall

@@ -113,19 +113,19 @@
 #include "app/self_gravity/unbound_gas.hpp"
 #include "app/text.hpp"
 #include "plot/figure.hpp"
-#include "sph/convergence.hpp"
-#include "sph/diagnostics.hpp"
 #include "sph/gravity/direct.hpp"
 #include "sph/gravity/tree.hpp"
-#include "sph/individual_leapfrog.hpp"
-#include "sph/lagrangian_1d.hpp"
+#include "sph/integration/individual_leapfrog.hpp"
+#include "sph/measures/convergence.hpp"
+#include "sph/measures/diagnostics.hpp"
+#include "sph/reference/lagrangian_1d.hpp"
 #include "sph/setups/evrard.hpp"
-#include "sph/setups/selhammar_tests.hpp"
+#include "sph/setups/selhammar_problems.hpp"
 #include "sph/simulation.hpp"
+#include "sph/terms/monaghan_gingold_1983.hpp"
+#include "sph/terms/morris_monaghan_1997.hpp"
 #include "sph/terms/pressure.hpp"
-#include "sph/viscosity/monaghan_gingold_1983.hpp"
-#include "sph/viscosity/morris_monaghan_1997.hpp"
-#include "sph/viscosity/selhammar_1997.hpp"
+#include "sph/terms/selhammar_1997.hpp"
 
 #include <algorithm>
 #include <array>
@@ -877,26 +877,27 @@ FreeFallResult step3_free_fall(const app::Chapter& chapter, const Parameters& pa
 /// with 2000 shells (500 with `--quick`).
 ///
 /// **Individual time steps.**  Each particle runs on its own time step
-/// (lib/sph/individual_leapfrog.hpp): the longest power-of-two fraction of a block of time that the
-/// particle's own limits allow -- the criteria of eq 7, for it alone -- kept within four times its
-/// neighbours' steps by the limiter of Saitoh & Makino (2009).  At each step only the particles
-/// whose step ends are evaluated: their neighbours, density, forces and gravity; the others drift
-/// and carry predicted velocities.  Selhammar (1997) integrates with one step for all, the least
-/// any particle needs.  We do not by default, because of what it costs: in the collapse the
-/// particles' own steps span a factor of ten and more, the centre's the shortest, and one step for
-/// all pays the centre's step everywhere.  Counted at every step of the runs with one step for all,
-/// power-of-two levels would make 1.9-2.4 times fewer updates over the whole run (Step 7's last
-/// column, with `--one-step`): on average a particle could skip every other step that the centre
-/// needs.  The modified viscosity's collapse takes 1.7 times as long with one step for all, and
-/// only with individual steps does the whole chapter run in three minutes.  `--one-step` runs Steps
-/// 4-6 as the paper does, and Step 4 then runs the standard and the modified viscosity once more
-/// with individual steps and compares: their energy extremes must agree to within the integration's
-/// error, and they do (\ref ch06_findings "the findings" give the numbers).  A run with individual
-/// steps records its energies only where all its particles are at the same time, at the end of a
-/// block, and a block spans the longest step any particle allows -- up to 0.19 late in the
-/// collapse, too few records to draw the curves or read their peaks.  So `app::run_evrard` ends a
-/// block at least every 0.01 (about 300 records; 9 % more particle updates in a development run of
-/// the standard viscosity).  The peaks are then read on a grid of 0.01, which can lower a peak by
+/// (lib/sph/integration/individual_leapfrog.hpp): the longest power-of-two fraction of a block of
+/// time that the particle's own limits allow -- the criteria of eq 7, for it alone -- kept within
+/// four times its neighbours' steps by the limiter of Saitoh & Makino (2009).  At each step only
+/// the particles whose step ends are evaluated: their neighbours, density, forces and gravity; the
+/// others drift and carry predicted velocities.  Selhammar (1997) integrates with one step for
+/// all, the least any particle needs.  We do not by default, because of what it costs: in the
+/// collapse the particles' own steps span a factor of ten and more, the centre's the shortest, and
+/// one step for all pays the centre's step everywhere.  Counted at every step of the runs with one
+/// step for all, power-of-two levels would make 1.9-2.4 times fewer updates over the whole run
+/// (Step 7's last column, with `--one-step`): on average a particle could skip every other step
+/// that the centre needs.  The modified viscosity's collapse takes 1.7 times as long with one step
+/// for all, and only with individual steps does the whole chapter run in three minutes.
+/// `--one-step` runs Steps 4-6 as the paper does, and Step 4 then runs the standard and the
+/// modified viscosity once more with individual steps and compares: their energy extremes must
+/// agree to within the integration's error, and they do (\ref ch06_findings "the findings" give
+/// the numbers).  A run with individual steps records its energies only where all its particles
+/// are at the same time, at the end of a block, and a block spans the longest step any particle
+/// allows -- up to 0.19 late in the collapse, too few records to draw the curves or read their
+/// peaks.  So `app::run_evrard` ends a block at least every 0.01 (about 300 records; 9 % more
+/// particle updates in a development run of the standard viscosity).  The peaks are then read on a
+/// grid of 0.01, which can lower a peak by
 /// \f$ 2\times10^{-4} \f$ to \f$ 10^{-3} \f$ of itself: the size of the two integrations'
 /// difference in the standard viscosity's extremes.
 ///

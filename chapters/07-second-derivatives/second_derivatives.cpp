@@ -30,8 +30,9 @@
 ///  - **Brookshaw (1985)**: the Laplacian in one pass, from the kernel's radial derivative
 ///    (lib/sph/derivatives/brookshaw_1985.hpp), which stands for \f$ -\nabla\times\nabla\times
 ///    \mathbf v \f$ only where \f$ \nabla\cdot\mathbf v = 0 \f$;
-///  - **Watkins et al. (1996)**: eqs 4-6 applied twice (lib/sph/derivatives/watkins_1996.hpp),
-///    and -- to isolate their one change -- the same two passes with the standard weights.
+///  - **Watkins et al. (1996)**: eqs 4-6 applied twice
+///    (lib/sph/derivatives/watkins_1996_two_pass.hpp), and -- to isolate their one change -- the
+/// same two passes with the standard weights.
 ///
 /// Our reading notes on the equations used here: \ref papers_watkins_eq2 "eq 2" (the viscous
 /// force), \ref papers_watkins_eq4 "eqs 4-6" (the operators), \ref papers_watkins_eq7
@@ -40,7 +41,7 @@
 /// What is new in the library: a frozen particle set and its pair loop
 /// (lib/sph/derivatives/particle_set.hpp), the three methods above, the particle sets of the
 /// static tests (lib/sph/setups/watkins_static.hpp, shared with chapter 2), and the
-/// Navier-Stokes viscosity as a term of the step (lib/sph/viscosity/watkins_1996.hpp): its first
+/// Navier-Stokes viscosity as a term of the step (lib/sph/terms/watkins_1996.hpp): its first
 /// derivatives in the step's gradient pass, its second in the force pass, over the same
 /// neighbour list.
 ///
@@ -76,11 +77,11 @@
 #include "app/second_derivatives/second_derivative_figures.hpp"
 #include "app/second_derivatives/second_derivative_tests.hpp"
 #include "app/text.hpp"
-#include "sph/initial_conditions.hpp"
+#include "sph/setups/initial_conditions.hpp"
 #include "sph/setups/watkins_static.hpp"
 #include "sph/simulation.hpp"
 #include "sph/terms/pressure.hpp"
-#include "sph/viscosity/watkins_1996.hpp"
+#include "sph/terms/watkins_1996.hpp"
 
 #include <algorithm>
 #include <array>
@@ -653,7 +654,7 @@ CostStudy cost(const Parameters& par, const Sets<3>& sets) {
 ///
 /// The operators above run on a frozen set.  A simulation needs them inside its step, where
 /// the density is summed first and the forces last, and where nothing may search for
-/// neighbours twice.  `sph::WatkinsViscosity` (lib/sph/viscosity/watkins_1996.hpp) is a term of
+/// neighbours twice.  `sph::WatkinsViscosity` (lib/sph/terms/watkins_1996.hpp) is a term of
 /// the step like the pressure force: it asks for the step's *gradient pass*, a second loop over
 /// the neighbour list that runs after the density pass (so \f$ \rho_j \f$ is known), and computes
 /// there the velocity gradient \f$ J_i \f$ of every particle -- the first pass.  The force pass,

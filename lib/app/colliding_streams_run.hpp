@@ -31,7 +31,7 @@
 
 #include "app/stopwatch.hpp"
 #include "sph/error.hpp"
-#include "sph/penetration.hpp"
+#include "sph/measures/penetration.hpp"
 #include "sph/setups/colliding_streams.hpp"
 #include "sph/simulation.hpp"
 

@@ -27,7 +27,7 @@
 #include "plot/error.hpp"
 #include "plot/figure.hpp"
 #include "plot/markup.hpp"
-#include "sph/convergence.hpp"
+#include "sph/measures/convergence.hpp"
 
 #include <algorithm>
 #include <cctype>

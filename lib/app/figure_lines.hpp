@@ -21,8 +21,8 @@
 /// Header-only: a chapter that includes it links sph_plot.
 
 #include "plot/figure.hpp"
-#include "sph/convergence.hpp"
-#include "sph/riemann.hpp"
+#include "sph/measures/convergence.hpp"
+#include "sph/reference/riemann.hpp"
 
 #include <cmath>
 #include <string>

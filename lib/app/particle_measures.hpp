@@ -11,9 +11,10 @@
 ///             app::radius_holding(p, 0.9));
 /// \endcode
 ///
-/// The totals themselves (momentum, energies, centre of mass) are lib/sph/diagnostics.hpp's.
+/// The totals themselves (momentum, energies, centre of mass) are
+/// lib/sph/measures/diagnostics.hpp's.
 
-#include "sph/diagnostics.hpp"
+#include "sph/measures/diagnostics.hpp"
 
 #include <algorithm>
 #include <cstddef>

@@ -8,7 +8,7 @@
 /// a column of particles about the exact line is visible as it is in the papers' figures.
 
 #include "plot/figure.hpp"
-#include "sph/riemann.hpp"
+#include "sph/reference/riemann.hpp"
 #include "sph/setups/shock_tube.hpp"
 
 #include <string>

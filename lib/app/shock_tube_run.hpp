@@ -43,7 +43,8 @@
 #include "app/chapter.hpp"
 #include "app/progress.hpp"
 #include "app/stopwatch.hpp"
-#include "sph/diagnostics.hpp"
+#include "sph/boundaries/fixed_particles.hpp"
+#include "sph/measures/diagnostics.hpp"
 #include "sph/setups/shock_tube.hpp"
 #include "sph/simulation.hpp"
 

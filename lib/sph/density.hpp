@@ -31,8 +31,8 @@
 /// it: a random set has no particle-free zone around each particle, and with the self term the
 /// density is biased high).
 
-#include "sph/active_set.hpp"
 #include "sph/fields.hpp"
+#include "sph/integration/active_set.hpp"
 #include "sph/kernel.hpp"
 #include "sph/neighbours.hpp"
 #include "sph/parallel.hpp"

@@ -23,9 +23,9 @@
 /// name -- a viscosity, a non-central term, the energy equation of a polytropic gas -- is not
 /// in its loop at all.
 
-#include "sph/active_set.hpp"
 #include "sph/error.hpp"
 #include "sph/fields.hpp"
+#include "sph/integration/active_set.hpp"
 #include "sph/kernel.hpp"
 #include "sph/neighbours.hpp"
 #include "sph/pair.hpp"

@@ -18,9 +18,9 @@
 ///  - keep_closer.hpp: the compaction that keeps the candidates within 2h (AVX-512 where
 ///    available, a plain loop elsewhere).
 
-#include "sph/neighbour_list.hpp"
-#include "sph/smoothing_length.hpp"
-#include "sph/keep_closer.hpp"
-#include "sph/search_blocks.hpp"
-#include "sph/neighbour_search.hpp"
-#include "sph/candidate_reuse.hpp"
+#include "sph/neighbours/candidate_reuse.hpp"
+#include "sph/neighbours/keep_closer.hpp"
+#include "sph/neighbours/neighbour_list.hpp"
+#include "sph/neighbours/neighbour_search.hpp"
+#include "sph/neighbours/search_blocks.hpp"
+#include "sph/neighbours/smoothing_length.hpp"

@@ -22,7 +22,7 @@ namespace sph {
 /// What the integrator does with a particle.  A fluid particle moves; a fixed boundary particle
 /// takes part in the density and force sums like any other (it is a neighbour, it has a
 /// density and a pressure) but is never kicked or drifted, and does not limit the time step
-/// (Watkins et al. 1996, sect. 4.1).  Only a scene whose boundaries allow it (boundaries.hpp)
+/// (Watkins et al. 1996, sect. 4.1).  Only a scene whose boundaries allow it (boundaries/)
 /// may have fixed particles.
 enum class ParticleKind : std::uint8_t { fluid = 0, fixed = 1 };
 

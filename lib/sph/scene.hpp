@@ -20,16 +20,16 @@
 /// | `Terms` | `sph::Terms<>` (none) | the terms of the equations of motion (terms.hpp); none means no hydrodynamics: no neighbour search, no density |
 /// | `Gravity` | `sph::NoGravity` | self-gravity (gravity/) |
 /// | `External` | `sph::NoExternalPotential` | an external potential: a point mass, a uniform field (potential/) |
-/// | `Boundaries` | `sph::NoBoundaries` | fixed boundary particles, constraints (boundaries.hpp) |
-/// | `Integrator` | `sph::Leapfrog<D>` | the time integrator (integrators.hpp) |
+/// | `Boundaries` | `sph::NoBoundaries` | fixed boundary particles, constraints (boundaries/) |
+/// | `Integrator` | `sph::Leapfrog<D>` | the time integrator (integration/) |
 ///
 /// The step (simulation.hpp) runs exactly the passes these parts need and allocates only the
 /// fields they use; what a scene does not name, it does not contain.
 
-#include "sph/boundaries.hpp"
+#include "sph/boundaries/none.hpp"
 #include "sph/eos.hpp"
 #include "sph/gravity/none.hpp"
-#include "sph/integrators.hpp"
+#include "sph/integration/integrators.hpp"
 #include "sph/kernel.hpp"
 #include "sph/potential/none.hpp"
 #include "sph/terms.hpp"

@@ -36,17 +36,17 @@
 /// it (their own limits do).  A scene may also fix the step (Watkins et al. integrate with a
 /// constant one).  The limiting criterion and particle of the last step are reported.
 
-#include "sph/active_set.hpp"
 #include "sph/box.hpp"
 #include "sph/density.hpp"
 #include "sph/fields.hpp"
 #include "sph/forces.hpp"
-#include "sph/initial_conditions.hpp"
+#include "sph/integration/active_set.hpp"
+#include "sph/integration/timestep_limit.hpp"
 #include "sph/neighbours.hpp"
 #include "sph/parallel.hpp"
 #include "sph/particles.hpp"
 #include "sph/scene.hpp"
-#include "sph/timestep_limit.hpp"
+#include "sph/setups/initial_conditions.hpp"
 
 #include <algorithm>
 #include <cmath>
@@ -95,6 +95,7 @@ class Simulation {
       TermList::template all_recognised<D>,
       "Simulation: a term of the scene has no member the step recognises -- check its members' "
       "signatures against the table in sph/terms.hpp");
+  static_assert(TermList::template slots_fit<D>);
 
   /// The particles, the box, and any of the scene's parts in any order, each by its type: the
   /// equation of state, a term, Settings, the gravity module, the external potential, the

@@ -6,8 +6,11 @@
 /// physical viscosity, a per-particle drag.  It brings any of the following, and the step
 /// calls exactly what it brings -- a member a term does not have is never called, and a term
 /// a scene does not name is never compiled into its step (after SWIFT's split into per-particle
-/// hooks, `hydro.h`, and pure pair functions, `hydro_iact.h`):
+/// hooks, `hydro.h`, and pure pair functions, `hydro_iact.h`).  This table is the one list of
+/// the slots; a member named like a slot whose signature does not fit it is a compile error
+/// (check_slots), and the page \ref writing_a_term walks through a real term.
 ///
+/// \anchor term_slots
 /// | member | slot | what it does |
 /// |:--|:--|:--|
 /// | `needs` | density pass | fields summed beside rho: Needs::density_rate, velocity_divergence, velocity_curl |
@@ -127,15 +130,30 @@ template <class T, int D>
 concept HasBeforeForce = requires(T t, std::size_t i, const ParticleView<D>& view) {
   t.before_force(i, view);
 };
+// The hooks that change a particle's a, du/dt, v or u take them by (non-const) reference: a
+// member that takes them by value would compile, be called, and change only its copies, so a
+// call with temporaries in their places must not compile.
 template <class T, int D>
 concept HasAfterForce = requires(T t, std::size_t i, const ParticleView<D>& view, Vec<D>& a,
                                  double& dudt) {
   t.after_force(i, view, a, dudt);
+}
+&&!requires(T t, std::size_t i, const ParticleView<D>& view, double& dudt) {
+  t.after_force(i, view, Vec<D>{}, dudt);
+}
+&&!requires(T t, std::size_t i, const ParticleView<D>& view, Vec<D>& a) {
+  t.after_force(i, view, a, 0.0);
 };
 template <class T, int D>
 concept HasWithKick = requires(T t, std::size_t i, double dt, const Vec<D>& v_before, Vec<D>& v,
                                double& u) {
   t.with_kick(i, dt, v_before, v, u);
+}
+&&!requires(T t, std::size_t i, double dt, const Vec<D>& v_before, double& u) {
+  t.with_kick(i, dt, v_before, Vec<D>{}, u);
+}
+&&!requires(T t, std::size_t i, double dt, const Vec<D>& v_before, Vec<D>& v) {
+  t.with_kick(i, dt, v_before, v, 0.0);
 };
 template <class T, int D>
 concept HasSignalSpeed = requires(const T t, std::size_t i, const ParticleView<D>& view) {
@@ -154,6 +172,104 @@ concept RecognisedTerm = HasNeeds<T> || HasResize<T> || HasBracket<T, D> ||
     HasPairAcceleration<T, D> || HasHeating<T, D> || HasGradientPass<T, D> || HasForceSum<T, D> ||
     HasAfterDensity<T, D> || HasBeforeForce<T, D> || HasAfterForce<T, D> || HasWithKick<T, D> ||
     HasSignalSpeed<T, D> || HasTimestep<T, D>;
+
+// --- a member named like a slot must fit the slot ------------------------------------------
+// The concepts above ask "does T have this member with this signature?"; a member with the right
+// name and a wrong signature answers "no", and the step would silently never call it.  So we
+// also ask "does T have a member of this name at all?", whatever its kind or signature, and
+// refuse a term where the two answers differ.  C++20 has no reflection to ask it directly; the
+// classic way is an ambiguity: a class derived from T and from a probe that has a member of the
+// name finds that name twice exactly when T has it too, and then `&Probe<T>::name` does not
+// compile.
+
+namespace slot_names {
+#define SPH_SLOT_NAME(slot)                 \
+  struct slot##_probe {                     \
+    int slot;                               \
+  };                                        \
+  template <class T>                        \
+  struct slot##_mixin : T, slot##_probe {}; \
+  template <class T>                        \
+  concept has_##slot = !requires {          \
+    &slot##_mixin<T>::slot;                 \
+  };
+SPH_SLOT_NAME(needs)
+SPH_SLOT_NAME(resize)
+SPH_SLOT_NAME(after_density)
+SPH_SLOT_NAME(GradientSum)
+SPH_SLOT_NAME(gradient_pair)
+SPH_SLOT_NAME(gradient_finish)
+SPH_SLOT_NAME(force_sum_pair)
+SPH_SLOT_NAME(force_sum_finish)
+SPH_SLOT_NAME(before_force)
+SPH_SLOT_NAME(bracket)
+SPH_SLOT_NAME(heating)
+SPH_SLOT_NAME(pair_acceleration)
+SPH_SLOT_NAME(after_force)
+SPH_SLOT_NAME(with_kick)
+SPH_SLOT_NAME(signal_speed)
+SPH_SLOT_NAME(timestep)
+SPH_SLOT_NAME(timestep_name)
+SPH_SLOT_NAME(cooling_hint)
+#undef SPH_SLOT_NAME
+}  // namespace slot_names
+
+/// Every member of term T that is named like a slot fits that slot in D dimensions; a member
+/// that does not is a compile error naming the slot and the signature it expects (the table
+/// above).  Checked for every term of a Simulation.
+template <class T, int D>
+constexpr bool check_slots() {
+  namespace n = slot_names;
+  static_assert(!n::has_needs<T> || HasNeeds<T>,
+                "term slot `needs` expects: static constexpr sph::Needs needs = ...;");
+  static_assert(!n::has_resize<T> || HasResize<T>,
+                "term slot `resize` expects: void resize(std::size_t n)");
+  static_assert(!n::has_after_density<T> || HasAfterDensity<T, D>,
+                "term slot `after_density` expects: "
+                "void after_density(std::size_t i, const sph::ParticleView<D>& view)");
+  static_assert(!(n::has_GradientSum<T> || n::has_gradient_pair<T> || n::has_gradient_finish<T>) ||
+                    HasGradientPass<T, D>,
+                "term slot `gradient pass` expects all three: template <int D> struct "
+                "GradientSum; void gradient_pair(GradientSum<D>& sum, const sph::Pair<D>& pair, "
+                "const sph::ParticleView<D>& view) const; "
+                "void gradient_finish(std::size_t i, GradientSum<D>& sum, "
+                "const sph::ParticleView<D>& view)");
+  static_assert(!(n::has_force_sum_pair<T> || n::has_force_sum_finish<T>) || HasForceSum<T, D>,
+                "term slot `force sums` expects both: sph::PairSum force_sum_pair(const "
+                "sph::Pair<D>& pair, const sph::ParticleView<D>& view) const; "
+                "void force_sum_finish(std::size_t i, const sph::PairSum& sum, "
+                "const sph::ParticleView<D>& view)");
+  static_assert(!n::has_before_force<T> || HasBeforeForce<T, D>,
+                "term slot `before_force` expects: "
+                "void before_force(std::size_t i, const sph::ParticleView<D>& view)");
+  static_assert(!n::has_bracket<T> || HasBracket<T, D>,
+                "term slot `bracket` expects: sph::Bracket bracket(const sph::Pair<D>& pair, "
+                "const sph::ParticleView<D>& view) const");
+  static_assert(!n::has_heating<T> || HasHeating<T, D>,
+                "term slot `heating` expects: double heating(const sph::Pair<D>& pair, "
+                "const sph::ParticleView<D>& view) const");
+  static_assert(!n::has_pair_acceleration<T> || HasPairAcceleration<T, D>,
+                "term slot `pair_acceleration` expects: sph::PairAcceleration "
+                "pair_acceleration(const sph::Pair<D>& pair, const sph::ParticleView<D>& view) "
+                "const");
+  static_assert(!n::has_after_force<T> || HasAfterForce<T, D>,
+                "term slot `after_force` expects: void after_force(std::size_t i, "
+                "const sph::ParticleView<D>& view, sph::Vec<D>& a, double& dudt)");
+  static_assert(!n::has_with_kick<T> || HasWithKick<T, D>,
+                "term slot `with_kick` expects: void with_kick(std::size_t i, double dt, "
+                "const sph::Vec<D>& v_before, sph::Vec<D>& v, double& u)");
+  static_assert(!n::has_signal_speed<T> || HasSignalSpeed<T, D>,
+                "term slot `signal_speed` expects: double signal_speed(std::size_t i, "
+                "const sph::ParticleView<D>& view) const");
+  static_assert(!(n::has_timestep<T> || n::has_timestep_name<T>) || HasTimestep<T, D>,
+                "term slot `timestep` expects both: double timestep(std::size_t i, "
+                "const sph::ParticleView<D>& view) const; "
+                "static constexpr const char* timestep_name = \"...\";");
+  static_assert(!n::has_cooling_hint<T> || HasCoolingHint<T>,
+                "term slot `cooling_hint` expects: static constexpr const char* cooling_hint = "
+                "\"...\";");
+  return true;
+}
 
 /// The fields term T asks the density pass for.
 template <class T>
@@ -187,6 +303,9 @@ struct Terms {
   /// Whether the step recognises every term, in D dimensions (see RecognisedTerm).
   template <int D>
   static constexpr bool all_recognised = (RecognisedTerm<T, D> && ...);
+  /// Every member of every term named like a slot fits it (a compile error otherwise).
+  template <int D>
+  static constexpr bool slots_fit = (check_slots<T, D>() && ...);
   /// Whether any term has a member of the given kind, in D dimensions.
   template <int D>
   static constexpr bool any_bracket = (HasBracket<T, D> || ...);

@@ -2,9 +2,9 @@
 // time past the exact solution's validity is refused with a message that names the times, and a
 // walled tube counts the momentum its walls take up.
 #include "app/shock_tube_run.hpp"
-#include "sph/boundaries.hpp"
+#include "sph/boundaries/fixed_particles.hpp"
+#include "sph/terms/monaghan_gingold_1983.hpp"
 #include "sph/terms/pressure.hpp"
-#include "sph/viscosity/monaghan_gingold_1983.hpp"
 
 #include <catch2/catch.hpp>
 

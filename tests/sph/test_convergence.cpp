@@ -1,7 +1,7 @@
-// Tests of the error-against-run-time facility (lib/sph/convergence.hpp) on synthetic data with
-// known orders, plus the table layout and the rules for bad data.
+// Tests of the error-against-run-time facility (lib/sph/measures/convergence.hpp) on synthetic data
+// with known orders, plus the table layout and the rules for bad data.
 
-#include "sph/convergence.hpp"
+#include "sph/measures/convergence.hpp"
 
 #include <catch2/catch.hpp>
 

@@ -4,8 +4,8 @@
 // independence of the thread count.  Degenerate input -- bad masses, coincident particles, an
 // isolated particle -- must give a clear error naming the particle or a documented finite result.
 #include "sph/density.hpp"
-#include "sph/initial_conditions.hpp"
-#include "sph/relax.hpp"
+#include "sph/setups/initial_conditions.hpp"
+#include "sph/setups/relax.hpp"
 
 #include <catch2/catch.hpp>
 

@@ -1,5 +1,5 @@
 // Second derivatives of velocity fields (lib/sph/derivatives/) and the Navier-Stokes viscosity
-// of Watkins et al. (lib/sph/viscosity/watkins_1996.hpp), against analytic fields.
+// of Watkins et al. (lib/sph/terms/watkins_1996.hpp), against analytic fields.
 //
 // The fields are periodic sines in a periodic unit box, on lattices (where the errors are
 // those of the kernel's discrete moments and the truncation of the Taylor series, both
@@ -7,10 +7,10 @@
 // noise).  Every test prints its worst error even when it passes.
 #include "sph/derivatives/brookshaw_1985.hpp"
 #include "sph/derivatives/flebbe_1994.hpp"
-#include "sph/derivatives/watkins_1996.hpp"
+#include "sph/derivatives/watkins_1996_two_pass.hpp"
 #include "sph/setups/watkins_static.hpp"
 #include "sph/simulation.hpp"
-#include "sph/viscosity/watkins_1996.hpp"
+#include "sph/terms/watkins_1996.hpp"
 
 #include <catch2/catch.hpp>
 

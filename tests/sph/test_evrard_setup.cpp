@@ -2,12 +2,12 @@
 // two gravity modules (chapter 6).
 #include "sph/gravity/direct.hpp"
 #include "sph/gravity/tree.hpp"
+#include "sph/measures/diagnostics.hpp"
 #include "sph/setups/evrard.hpp"
-#include "sph/diagnostics.hpp"
 #include "sph/simulation.hpp"
+#include "sph/terms/monaghan_gingold_1983.hpp"
 #include "sph/terms/pressure.hpp"
-#include "sph/viscosity/monaghan_gingold_1983.hpp"
-#include "sph/viscosity/selhammar_1997.hpp"
+#include "sph/terms/selhammar_1997.hpp"
 
 #include <catch2/catch.hpp>
 #include <omp.h>

@@ -6,7 +6,7 @@
 #include "sph/gravity/direct.hpp"
 #include "sph/gravity/softening.hpp"
 #include "sph/gravity/tree.hpp"
-#include "sph/initial_conditions.hpp"
+#include "sph/setups/initial_conditions.hpp"
 #include "sph/simulation.hpp"
 
 #include <catch2/catch.hpp>

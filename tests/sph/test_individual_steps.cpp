@@ -5,14 +5,14 @@
 #include "brute_force_pairs.hpp"
 #include "sph/gravity/direct.hpp"
 #include "sph/gravity/tree.hpp"
-#include "sph/individual_leapfrog.hpp"
+#include "sph/integration/individual_leapfrog.hpp"
+#include "sph/measures/diagnostics.hpp"
 #include "sph/setups/evrard.hpp"
 #include "sph/setups/sedov.hpp"
 #include "sph/simulation.hpp"
-#include "sph/diagnostics.hpp"
+#include "sph/terms/monaghan_gingold_1983.hpp"
 #include "sph/terms/pressure.hpp"
-#include "sph/viscosity/monaghan_gingold_1983.hpp"
-#include "sph/viscosity/selhammar_1997.hpp"
+#include "sph/terms/selhammar_1997.hpp"
 
 #include <catch2/catch.hpp>
 #include <omp.h>

@@ -1,9 +1,9 @@
-// Initial conditions (lib/sph/initial_conditions.hpp, lib/sph/relax.hpp): lattices fill their
-// box exactly and seamlessly, cuts keep what they should, disturbances stay within their
-// amplitude, random sets are reproducible, coincident points are caught, and relaxation settles
-// a random set without pairing particles.
-#include "sph/initial_conditions.hpp"
-#include "sph/relax.hpp"
+// Initial conditions (lib/sph/setups/initial_conditions.hpp, lib/sph/setups/relax.hpp): lattices
+// fill their box exactly and seamlessly, cuts keep what they should, disturbances stay within their
+// amplitude, random sets are reproducible, coincident points are caught, and relaxation settles a
+// random set without pairing particles.
+#include "sph/setups/initial_conditions.hpp"
+#include "sph/setups/relax.hpp"
 
 #include <catch2/catch.hpp>
 

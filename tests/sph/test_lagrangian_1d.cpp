@@ -1,4 +1,4 @@
-// Tests of the one-dimensional Lagrangian code (lib/sph/lagrangian_1d.hpp), the reference
+// Tests of the one-dimensional Lagrangian code (lib/sph/reference/lagrangian_1d.hpp), the reference
 // solution of the SPH scenes: the Sod tube against the exact Riemann solver, conservation of
 // total energy to round-off (with and without self-gravity), the coasting homologous collapse,
 // the free fall of a cold uniform sphere against its analytic solution, the Evrard collapse
@@ -9,8 +9,8 @@
 // wrong scheme gives -- a missing area factor, a wrong node mass or a non-compatible energy
 // update fails each of them by orders of magnitude.
 
-#include "sph/lagrangian_1d.hpp"
-#include "sph/riemann.hpp"
+#include "sph/reference/lagrangian_1d.hpp"
+#include "sph/reference/riemann.hpp"
 
 #include <catch2/catch.hpp>
 

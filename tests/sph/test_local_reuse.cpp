@@ -2,8 +2,8 @@
 // the packed-image arithmetic, the local motion bound, the SIMD compaction of kept pairs, and
 // the search itself when part of the gas moves and part rests (against brute force).
 #include "brute_force_pairs.hpp"
-#include "sph/local_motion.hpp"
 #include "sph/neighbours.hpp"
+#include "sph/neighbours/local_motion.hpp"
 
 #include <catch2/catch.hpp>
 

@@ -1,9 +1,9 @@
-// Tests of the error norms (lib/sph/norms.hpp) and of the totals and finite-value checks of
-// lib/sph/diagnostics.hpp: hand-computable cases, selections, and the rule that a NaN is never
-// a small error.
+// Tests of the error norms (lib/sph/measures/norms.hpp) and of the totals and finite-value checks
+// of lib/sph/measures/diagnostics.hpp: hand-computable cases, selections, and the rule that a NaN
+// is never a small error.
 
-#include "sph/diagnostics.hpp"
-#include "sph/norms.hpp"
+#include "sph/measures/diagnostics.hpp"
+#include "sph/measures/norms.hpp"
 
 #include <catch2/catch.hpp>
 
@@ -170,7 +170,7 @@ TEST_CASE("component() and Tolerance", "[norms]") {
 }
 
 // ---------------------------------------------------------------------------------------------
-// lib/sph/diagnostics.hpp
+// lib/sph/measures/diagnostics.hpp
 
 namespace {
 

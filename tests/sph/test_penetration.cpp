@@ -1,8 +1,8 @@
-// Tests of the penetration diagnostic (lib/sph/penetration.hpp): hand-countable cases, the
+// Tests of the penetration diagnostic (lib/sph/measures/penetration.hpp): hand-countable cases, the
 // merge-sort count against a brute-force double loop, ties in 2D lattices, periodic unwrapping,
 // and clear errors for bad input.
 
-#include "sph/penetration.hpp"
+#include "sph/measures/penetration.hpp"
 
 #include <catch2/catch.hpp>
 

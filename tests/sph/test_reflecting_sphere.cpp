@@ -1,12 +1,12 @@
 // The reflecting sphere (Watkins et al. 1996, sect. 4.4): a bounce that is exactly a mirror
 // image, conserves what an elastic wall must conserve, holds a hot gas, and stops with a
 // message -- never a crash -- when a particle cannot be brought back.
-#include "sph/boundaries.hpp"
-#include "sph/diagnostics.hpp"
-#include "sph/initial_conditions.hpp"
+#include "sph/boundaries/reflecting_sphere.hpp"
+#include "sph/measures/diagnostics.hpp"
+#include "sph/setups/initial_conditions.hpp"
 #include "sph/simulation.hpp"
+#include "sph/terms/monaghan_gingold_1983.hpp"
 #include "sph/terms/pressure.hpp"
-#include "sph/viscosity/monaghan_gingold_1983.hpp"
 
 #include <Eigen/Geometry>
 #include <catch2/catch.hpp>

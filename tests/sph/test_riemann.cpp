@@ -1,13 +1,13 @@
-// Tests of the exact Riemann solver (lib/sph/riemann.hpp) against Toro (2009) Table 4.2, the two
-// shock tubes of the papers, and the physics every solution must obey: Rankine-Hugoniot jumps
-// across shocks, isentropy and the Riemann invariant through fans, continuity, conservation,
+// Tests of the exact Riemann solver (lib/sph/reference/riemann.hpp) against Toro (2009) Table 4.2,
+// the two shock tubes of the papers, and the physics every solution must obey: Rankine-Hugoniot
+// jumps across shocks, isentropy and the Riemann invariant through fans, continuity, conservation,
 // symmetry and Galilean invariance.
 //
 // Tolerance policy: relative error with an absolute floor (Catch's Approx epsilon + margin);
 // a NaN never compares equal.  The reference values of Toro's Table 4.2 are printed to 5-6
 // significant figures, hence 1e-5.
 
-#include "sph/riemann.hpp"
+#include "sph/reference/riemann.hpp"
 
 #include <catch2/catch.hpp>
 

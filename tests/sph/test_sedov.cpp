@@ -1,9 +1,10 @@
-// The Sedov-Taylor solution (sph/sedov_solution.hpp) and the blast's set-up (sph/setups/sedov.hpp).
+// The Sedov-Taylor solution (sph/reference/sedov_solution.hpp) and the blast's set-up
+// (sph/setups/sedov.hpp).
 //
 // The solution is integrated from the shock inwards; nothing in it imposes the mass of the
 // shocked region, or the values of xi_0 that Sedov tabulated, so both check the integration.
-#include "sph/diagnostics.hpp"
-#include "sph/sedov_solution.hpp"
+#include "sph/measures/diagnostics.hpp"
+#include "sph/reference/sedov_solution.hpp"
 #include "sph/setups/sedov.hpp"
 
 #include <catch2/catch.hpp>

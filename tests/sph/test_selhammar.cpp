@@ -1,4 +1,4 @@
-// Selhammar's (1997) modified viscosity (lib/sph/viscosity/selhammar_1997.hpp) and the
+// Selhammar's (1997) modified viscosity (lib/sph/terms/selhammar_1997.hpp) and the
 // Morris & Monaghan (1997) switch it is compared with (morris_monaghan_1997.hpp):
 //   1. the collective term's exact update against its own equation integrated finely, and the
 //      explicit kick's overshoot that the exact update removes;
@@ -11,11 +11,11 @@
 //   5. the switch: alpha rises in a compression and decays to alpha_min at rest.
 // Every test prints its measured numbers.
 #include "sph/box.hpp"
-#include "sph/initial_conditions.hpp"
+#include "sph/setups/initial_conditions.hpp"
 #include "sph/simulation.hpp"
+#include "sph/terms/morris_monaghan_1997.hpp"
 #include "sph/terms/pressure.hpp"
-#include "sph/viscosity/morris_monaghan_1997.hpp"
-#include "sph/viscosity/selhammar_1997.hpp"
+#include "sph/terms/selhammar_1997.hpp"
 
 #include <catch2/catch.hpp>
 

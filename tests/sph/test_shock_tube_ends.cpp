@@ -1,11 +1,11 @@
 // The ends of a shock tube: periodic (the far interface at x = ±L) or closed by walls of fixed
 // particles.  A walled tube of the window's length gives the same answer in the window as the
 // periodic tube twice its length, and the exact solution's validity is known for both.
-#include "sph/boundaries.hpp"
+#include "sph/boundaries/fixed_particles.hpp"
 #include "sph/setups/shock_tube.hpp"
 #include "sph/simulation.hpp"
+#include "sph/terms/monaghan_gingold_1983.hpp"
 #include "sph/terms/pressure.hpp"
-#include "sph/viscosity/monaghan_gingold_1983.hpp"
 
 #include <catch2/catch.hpp>
 

@@ -3,8 +3,8 @@
 // identical results for 1 and 2 threads, clear errors for bad input.
 #include "sph/parallel.hpp"
 #include "sph/simulation.hpp"
+#include "sph/terms/monaghan_gingold_1983.hpp"
 #include "sph/terms/pressure.hpp"
-#include "sph/viscosity/monaghan_gingold_1983.hpp"
 
 #include <catch2/catch.hpp>
 #include <omp.h>

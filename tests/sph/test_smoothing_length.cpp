@@ -1,5 +1,5 @@
-// The smoothing-length rules of lib/sph/smoothing_length.hpp on a uniform lattice, a random set
-// and a set with a 10^6 density contrast:
+// The smoothing-length rules of lib/sph/neighbours/smoothing_length.hpp on a uniform lattice, a
+// random set and a set with a 10^6 density contrast:
 //  - neighbour number: every particle's count lies within N +- tolerance (on a lattice: the
 //    achievable count nearest N, since whole shells of neighbours sit at one distance);
 //  - density: every particle satisfies Watkins' eq A6/A7, rho_i (2 h_i)^D V_D = N m_i, checked
@@ -7,7 +7,7 @@
 // And the failures: non-convergence, too few particles, N+1 coincident particles.  And the
 // one-pass selection of the N-th and (N+1)-th nearest candidates against a full sort.
 #include "sph/density.hpp"
-#include "sph/initial_conditions.hpp"
+#include "sph/setups/initial_conditions.hpp"
 
 #include <catch2/catch.hpp>
 

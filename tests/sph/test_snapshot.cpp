@@ -1,9 +1,9 @@
-// Tests of the SPLASH-readable snapshots (lib/sph/snapshot.hpp): the exact header layout, an
-// emulation of how SPLASH's ASCII reader finds the header lines, time, gamma and column labels
+// Tests of the SPLASH-readable snapshots (lib/sph/measures/snapshot.hpp): the exact header layout,
+// an emulation of how SPLASH's ASCII reader finds the header lines, time, gamma and column labels
 // (read_data_ascii.f90 / asciiutils.f90), bit-exact round trips in 1D and 3D, and errors.
 
-#include "sph/diagnostics.hpp"
-#include "sph/snapshot.hpp"
+#include "sph/measures/diagnostics.hpp"
+#include "sph/measures/snapshot.hpp"
 
 #include <catch2/catch.hpp>
 

@@ -7,11 +7,12 @@
 //
 // Every test prints its worst error (or its measured number) even when it passes, and every
 // comparison is written so that a NaN fails it.
+#include "sph/boundaries/fixed_particles.hpp"
 #include "sph/potential/point_mass.hpp"
 #include "sph/potential/uniform_field.hpp"
 #include "sph/simulation.hpp"
+#include "sph/terms/monaghan_gingold_1983.hpp"
 #include "sph/terms/pressure.hpp"
-#include "sph/viscosity/monaghan_gingold_1983.hpp"
 
 #include <catch2/catch.hpp>
 

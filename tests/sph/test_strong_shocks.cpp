@@ -7,11 +7,11 @@
 // the time step collapses.  With each particle doing the work of its own pressure
 // (sph::PressureOwnWork), du_i/dt = P_i/rho_i^2 sum_j m_j v_ij . grad_i W, a cold particle cools
 // by a fraction (gamma - 1) div v of its own energy per unit time, and the same tubes run.
-#include "sph/diagnostics.hpp"
+#include "sph/measures/diagnostics.hpp"
 #include "sph/setups/shock_tube.hpp"
 #include "sph/simulation.hpp"
+#include "sph/terms/monaghan_gingold_1983.hpp"
 #include "sph/terms/pressure.hpp"
-#include "sph/viscosity/monaghan_gingold_1983.hpp"
 
 #include <catch2/catch.hpp>
 

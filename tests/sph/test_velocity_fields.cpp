@@ -18,7 +18,7 @@
 // the error floor of the sine field at a fixed neighbour number (the second test).
 #include "sph/box.hpp"
 #include "sph/density.hpp"
-#include "sph/initial_conditions.hpp"
+#include "sph/setups/initial_conditions.hpp"
 #include "sph/simulation.hpp"
 #include "sph/terms/pressure.hpp"
 

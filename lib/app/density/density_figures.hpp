@@ -19,7 +19,7 @@
 
 #include "app/error_figure.hpp"
 #include "plot/figure.hpp"
-#include "sph/convergence.hpp"
+#include "sph/measures/convergence.hpp"
 #include "sph/particles.hpp"
 
 #include <cmath>

@@ -18,15 +18,15 @@
 /// The errors recorded are those of app::unit_density_errors: the set's intended density is
 /// one everywhere.
 
+#include "app/density/uniform_set_measures.hpp"
 #include "app/stopwatch.hpp"
 #include "app/text.hpp"
-#include "app/density/uniform_set_measures.hpp"
 #include "sph/box.hpp"
-#include "sph/convergence.hpp"
 #include "sph/density.hpp"
+#include "sph/measures/convergence.hpp"
 #include "sph/neighbours.hpp"
 #include "sph/particles.hpp"
-#include "sph/relax.hpp"
+#include "sph/setups/relax.hpp"
 #include "sph/setups/watkins_static.hpp"
 
 #include <omp.h>

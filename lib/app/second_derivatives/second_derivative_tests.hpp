@@ -31,7 +31,7 @@
 #include "plot/figure.hpp"
 #include "sph/derivatives/brookshaw_1985.hpp"
 #include "sph/derivatives/flebbe_1994.hpp"
-#include "sph/derivatives/watkins_1996.hpp"
+#include "sph/derivatives/watkins_1996_two_pass.hpp"
 #include "sph/error.hpp"
 #include "sph/setups/watkins_static.hpp"
 

@@ -19,7 +19,7 @@
 /// Header-only, like the other shared pieces of lib/app that use lib/sph.
 
 #include "sph/error.hpp"
-#include "sph/lagrangian_1d.hpp"
+#include "sph/reference/lagrangian_1d.hpp"
 
 #include <cstddef>
 #include <filesystem>

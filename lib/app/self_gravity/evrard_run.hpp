@@ -30,8 +30,8 @@
 #include "app/particle_measures.hpp"
 #include "app/progress.hpp"
 #include "app/stopwatch.hpp"
-#include "sph/diagnostics.hpp"
 #include "sph/error.hpp"
+#include "sph/measures/diagnostics.hpp"
 #include "sph/setups/evrard.hpp"
 #include "sph/simulation.hpp"
 

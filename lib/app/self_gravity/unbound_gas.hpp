@@ -11,11 +11,11 @@
 /// to the centre of mass, so that a set that drifts as a whole does not count as escaping; the
 /// kinetic energy of that drift is reported apart.
 
-#include "sph/diagnostics.hpp"
 #include "sph/gravity/direct.hpp"
 #include "sph/gravity/softening.hpp"
-#include "sph/lagrangian_1d.hpp"
+#include "sph/measures/diagnostics.hpp"
 #include "sph/particles.hpp"
+#include "sph/reference/lagrangian_1d.hpp"
 
 #include <cstddef>
 #include <vector>

@@ -28,9 +28,9 @@
 #include "app/particle_measures.hpp"
 #include "app/progress.hpp"
 #include "app/stopwatch.hpp"
-#include "sph/diagnostics.hpp"
-#include "sph/lagrangian_1d.hpp"
-#include "sph/setups/selhammar_tests.hpp"
+#include "sph/measures/diagnostics.hpp"
+#include "sph/reference/lagrangian_1d.hpp"
+#include "sph/setups/selhammar_problems.hpp"
 #include "sph/simulation.hpp"
 
 #include <algorithm>

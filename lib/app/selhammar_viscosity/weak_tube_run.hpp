@@ -22,14 +22,14 @@
 ///
 /// Header-only, like the other shared pieces of lib/app that use lib/sph.
 
+#include "app/curve_reading.hpp"
 #include "app/particle_measures.hpp"
 #include "app/progress.hpp"
-#include "app/curve_reading.hpp"
 #include "app/stopwatch.hpp"
-#include "sph/diagnostics.hpp"
-#include "sph/lagrangian_1d.hpp"
-#include "sph/riemann.hpp"
-#include "sph/setups/selhammar_tests.hpp"
+#include "sph/measures/diagnostics.hpp"
+#include "sph/reference/lagrangian_1d.hpp"
+#include "sph/reference/riemann.hpp"
+#include "sph/setups/selhammar_problems.hpp"
 #include "sph/simulation.hpp"
 
 #include <algorithm>

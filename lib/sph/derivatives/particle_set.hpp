@@ -15,13 +15,13 @@
 /// images, masses, smoothing lengths, densities, the neighbour list) and runs the pair loop.
 /// It reads the densities the caller computed -- with the self term or without, gather or
 /// pair-averaged -- so that a chapter can show what each choice does to the derivatives.
-/// Nothing here moves a particle: the moving term is lib/sph/viscosity/watkins_1996.hpp.
+/// Nothing here moves a particle: the moving term is lib/sph/terms/watkins_1996.hpp.
 
 #include "sph/box.hpp"
 #include "sph/dimension.hpp"
 #include "sph/error.hpp"
 #include "sph/kernel.hpp"
-#include "sph/neighbour_list.hpp"
+#include "sph/neighbours/neighbour_list.hpp"
 #include "sph/parallel.hpp"
 #include "sph/particles.hpp"
 

@@ -29,10 +29,10 @@
 /// (gravity/tree.hpp) is measured against, and the module to use below a few thousand
 /// particles.
 
-#include "sph/active_set.hpp"
 #include "sph/box.hpp"
 #include "sph/error.hpp"
 #include "sph/gravity/softening.hpp"
+#include "sph/integration/active_set.hpp"
 #include "sph/particles.hpp"
 
 #include <cmath>

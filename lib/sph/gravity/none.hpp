@@ -13,8 +13,8 @@
 /// and the step calls it after the force pass.  A scene without gravity names NoGravity, and
 /// its step contains no gravity code.
 
-#include "sph/active_set.hpp"
 #include "sph/box.hpp"
+#include "sph/integration/active_set.hpp"
 #include "sph/particles.hpp"
 
 namespace sph {

@@ -22,9 +22,9 @@
 
 #include "sph/box.hpp"
 #include "sph/eos.hpp"
-#include "sph/initial_conditions.hpp"
 #include "sph/particles.hpp"
-#include "sph/riemann.hpp"
+#include "sph/reference/riemann.hpp"
+#include "sph/setups/initial_conditions.hpp"
 
 #include <cmath>
 #include <string>

@@ -25,8 +25,8 @@
 /// radial spacing grows faster than the tangential one).
 
 #include "sph/error.hpp"
-#include "sph/initial_conditions.hpp"
 #include "sph/particles.hpp"
+#include "sph/setups/initial_conditions.hpp"
 
 #include <algorithm>
 #include <cmath>

@@ -25,10 +25,10 @@
 #include "sph/box.hpp"
 #include "sph/density.hpp"
 #include "sph/eos.hpp"
-#include "sph/initial_conditions.hpp"
 #include "sph/kernel.hpp"
 #include "sph/neighbours.hpp"
-#include "sph/sedov_solution.hpp"
+#include "sph/reference/sedov_solution.hpp"
+#include "sph/setups/initial_conditions.hpp"
 
 #include <cmath>
 

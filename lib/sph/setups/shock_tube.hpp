@@ -16,7 +16,7 @@
 /// value at 60 neighbours.  The rarefaction then stalls.  So a multi-D tube can start from a
 /// lattice (to show this), a disturbed lattice (random offsets of a fraction of the spacing:
 /// the symmetry is broken and particles rearrange), or a settled glass (each side relaxed to
-/// uniform density in its own periodic box, sph/relax.hpp).
+/// uniform density in its own periodic box, sph/setups/relax.hpp).
 ///
 /// **Walls instead of the period.**  A periodic tube holds twice the particles of the window it
 /// is measured in: the far half is there only to keep the far interface's waves away.  With
@@ -38,12 +38,12 @@
 
 #include "sph/density.hpp"
 #include "sph/eos.hpp"
-#include "sph/initial_conditions.hpp"
+#include "sph/measures/convergence.hpp"
+#include "sph/measures/norms.hpp"
 #include "sph/neighbours.hpp"
-#include "sph/norms.hpp"
-#include "sph/relax.hpp"
-#include "sph/riemann.hpp"
-#include "sph/convergence.hpp"
+#include "sph/reference/riemann.hpp"
+#include "sph/setups/initial_conditions.hpp"
+#include "sph/setups/relax.hpp"
 
 #include <algorithm>
 #include <cmath>

@@ -15,10 +15,10 @@
 #include "sph/density.hpp"
 #include "sph/dimension.hpp"
 #include "sph/error.hpp"
-#include "sph/initial_conditions.hpp"
 #include "sph/neighbours.hpp"
 #include "sph/particles.hpp"
-#include "sph/relax.hpp"
+#include "sph/setups/initial_conditions.hpp"
+#include "sph/setups/relax.hpp"
 
 #include <algorithm>
 #include <cmath>

@@ -3,8 +3,8 @@
 /// \brief Keeping the candidates closer than a limit: the compaction that turns a particle's
 /// candidates into its pairs, eight at a time with AVX-512 and in a plain loop elsewhere.
 
-#include "sph/cell_grid.hpp"
-#include "sph/neighbour_list.hpp"
+#include "sph/neighbours/cell_grid.hpp"
+#include "sph/neighbours/neighbour_list.hpp"
 
 #if defined(__AVX512F__)
 #include <immintrin.h>

@@ -16,9 +16,9 @@
 /// smoothing_length.hpp.
 
 #include "sph/box.hpp"
-#include "sph/cell_grid.hpp"
 #include "sph/dimension.hpp"
 #include "sph/error.hpp"
+#include "sph/neighbours/cell_grid.hpp"
 #include "sph/parallel.hpp"
 #include "sph/particles.hpp"
 

@@ -59,12 +59,12 @@
 /// conserved only to the accuracy of the integration, not to round-off, and energy only to the
 /// order of the scheme.
 
-#include "sph/active_set.hpp"
 #include "sph/dimension.hpp"
 #include "sph/error.hpp"
+#include "sph/integration/active_set.hpp"
+#include "sph/integration/timestep_limit.hpp"
 #include "sph/parallel.hpp"
 #include "sph/particles.hpp"
-#include "sph/timestep_limit.hpp"
 
 #include <algorithm>
 #include <cmath>

@@ -15,8 +15,8 @@
 
 #include "sph/dimension.hpp"
 #include "sph/error.hpp"
+#include "sph/measures/snapshot.hpp"
 #include "sph/particles.hpp"
-#include "sph/snapshot.hpp"
 
 #include <algorithm>
 #include <cmath>

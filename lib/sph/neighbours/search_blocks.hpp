@@ -7,9 +7,9 @@
 /// for one thread at a time.  The types are plain arrays that only grow, so that a search
 /// settles from step to step into buffers that are already large enough.
 
-#include "sph/cell_grid.hpp"
-#include "sph/neighbour_list.hpp"
-#include "sph/smoothing_length.hpp"
+#include "sph/neighbours/cell_grid.hpp"
+#include "sph/neighbours/neighbour_list.hpp"
+#include "sph/neighbours/smoothing_length.hpp"
 
 #include <algorithm>
 #include <cstddef>

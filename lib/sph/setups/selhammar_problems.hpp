@@ -25,8 +25,8 @@
 
 #include "sph/box.hpp"
 #include "sph/error.hpp"
-#include "sph/initial_conditions.hpp"
 #include "sph/particles.hpp"
+#include "sph/setups/initial_conditions.hpp"
 
 #include <algorithm>
 #include <array>

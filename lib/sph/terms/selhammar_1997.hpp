@@ -204,10 +204,11 @@ enum class CollectiveFrame {
   neighbourhood,  ///< relative to the neighbourhood's velocity (Galilean invariant)
 };
 
-/// Selhammar's (1997) collective bulk viscosity, eqs 14-19, with its energy bookkeeping.
-/// A term with a gradient pass (the neighbourhood's velocity), an `after_force` hook (the
-/// explicit acceleration), a `with_kick` hook (the exact update and the energy) and a signal
-/// speed \f$ 1.2\eta c_i \f$ (eq 7, with \f$ \eta \f$ "used in the same way as \f$ \alpha \f$").
+/// Selhammar's (1997) collective bulk viscosity, eqs 14-19, with its energy bookkeeping.  A term
+/// with sums in the force pass (`force_sum_pair`, `force_sum_finish`: the neighbourhood's velocity
+/// of eq 14, which only the kicks use, so it needs no loop of its own), an `after_force` hook (the
+/// explicit acceleration), a `with_kick` hook (the exact update and the energy) and a signal speed
+/// \f$ 1.2\eta c_i \f$ (eq 7, with \f$ \eta \f$ "used in the same way as \f$ \alpha \f$").
 template <int D, class K = Kernel<D>>
 struct SelhammarCollective {
   static constexpr const char* name = "Selhammar (1997) collective bulk viscosity";

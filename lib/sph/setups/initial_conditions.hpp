@@ -5,7 +5,7 @@
 ///
 /// A particle set is built in three steps, each a short function here:
 ///   1. **positions**: a lattice filling a box (cubic, body-centred; in 2D also hexagonal), a
-///      uniform random set, or a settled set (sph/relax.hpp);
+///      uniform random set, or a settled set (sph/setups/relax.hpp);
 ///   2. **shape**: keep the points inside a sphere or a box (cut_sphere, cut_box), move them a
 ///      little (disturb);
 ///   3. **particles**: give each point a mass (make_particles), and, where the density must be

@@ -10,7 +10,7 @@
 /// The class, its state and the grid search are in neighbour_search.hpp, which includes this
 /// file at its end.
 
-#include "sph/neighbour_search.hpp"
+#include "sph/neighbours/neighbour_search.hpp"
 
 #include <algorithm>
 #include <array>

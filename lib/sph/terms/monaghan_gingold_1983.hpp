@@ -29,6 +29,7 @@ namespace sph {
 /// The term of the standard viscosity (eq 6 of Selhammar): the pair bracket
 /// \f$ \Pi_{ij} = (-\alpha \bar c_{ij} \mu_{ij} + \beta \mu_{ij}^2)/\bar\rho_{ij} \f$ for
 /// approaching pairs, and its signal speed for the time step.
+// [declaration]
 struct MonaghanGingold1983 {
   static constexpr bool tracks_mu = true;  ///< the force pass keeps max_j mu_ij (eq 7)
   static constexpr const char* name = "Monaghan & Gingold (1983) AV";
@@ -46,6 +47,7 @@ struct MonaghanGingold1983 {
     require(std::isfinite(nu2) && nu2 > 0,
             "artificial viscosity: the nu^2 factor must be positive");
   }
+  // [declaration]
 
   std::string describe() const {
     char s[96];
@@ -57,6 +59,7 @@ struct MonaghanGingold1983 {
   /// \f$ \bar c_{ij} \f$ the pair means, and \f$ |\mu_{ij}| \f$ for the time step (only pairs
   /// inside the kernel's support at \f$ \bar h_{ij} \f$ count there).  Without a branch: a
   /// receding pair has \f$ \mu = 0 \f$ and so \f$ \Pi = 0 \f$ exactly.
+  // [bracket]
   template <int D>
   Bracket bracket(const Pair<D>& p, const ParticleView<D>& in) const {
     const double rho_bar = 0.5 * (in.rho[p.i] + in.rho[p.j]);
@@ -64,13 +67,16 @@ struct MonaghanGingold1983 {
     const double mu = p.rv < 0 ? p.h_bar * p.rv / (p.r2 + nu2_factor * p.h_bar * p.h_bar) : 0.0;
     return {(-alpha * mu * c_bar + beta * mu * mu) / rho_bar, p.r2 < p.support2 ? -mu : 0.0};
   }
+  // [bracket]
 
   /// The viscous part of the signal speed in the time step, Selhammar eq 7:
   /// \f$ 1.2(\alpha c_i + \beta \mu_{i,\max}) \f$.
+  // [signal_speed]
   template <int D>
   double signal_speed(std::size_t i, const ParticleView<D>& in) const {
     return 1.2 * (alpha * in.c[i] + beta * in.max_mu[i]);
   }
+  // [signal_speed]
 };
 
 }  // namespace sph

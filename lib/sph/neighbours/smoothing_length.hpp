@@ -26,10 +26,10 @@
 /// within 2h is decided by support2 alone, everywhere.
 
 #include "sph/box.hpp"
-#include "sph/cell_grid.hpp"
 #include "sph/dimension.hpp"
 #include "sph/error.hpp"
 #include "sph/kernel.hpp"
+#include "sph/neighbours/cell_grid.hpp"
 #include "sph/particles.hpp"
 
 #include <algorithm>

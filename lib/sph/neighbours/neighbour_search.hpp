@@ -11,19 +11,19 @@
 /// little relative to it: those members are in candidate_reuse.hpp, which this file includes
 /// at its end.
 
-#include "sph/active_set.hpp"
 #include "sph/box.hpp"
-#include "sph/cell_grid.hpp"
 #include "sph/dimension.hpp"
 #include "sph/error.hpp"
-#include "sph/keep_closer.hpp"
+#include "sph/integration/active_set.hpp"
 #include "sph/kernel.hpp"
-#include "sph/local_motion.hpp"
-#include "sph/neighbour_list.hpp"
+#include "sph/neighbours/cell_grid.hpp"
+#include "sph/neighbours/keep_closer.hpp"
+#include "sph/neighbours/local_motion.hpp"
+#include "sph/neighbours/neighbour_list.hpp"
+#include "sph/neighbours/search_blocks.hpp"
+#include "sph/neighbours/smoothing_length.hpp"
 #include "sph/parallel.hpp"
 #include "sph/particles.hpp"
-#include "sph/search_blocks.hpp"
-#include "sph/smoothing_length.hpp"
 
 #include <omp.h>
 
@@ -660,4 +660,4 @@ class NeighbourSearch {
 }  // namespace sph
 
 // The members that reuse candidates from step to step (they need the class complete).
-#include "sph/candidate_reuse.hpp"
+#include "sph/neighbours/candidate_reuse.hpp"
