@@ -13,7 +13,12 @@
 //     where the program lives;
 //   - the prose with "/// " stripped, verbatim, and each maximal run of code lines (without
 //     leading and trailing blank lines) as a \code{.cpp} ... \endcode block;
-//   - the chapter's helper files, each as one code block;
+//   - the chapter's helper files (the other .cpp/.hpp files of its directory: what only this
+//     chapter uses), rendered like the program -- prose verbatim, code in blocks -- each where
+//     a prose line "/// \show_file name.hpp" of the program (or of another helper) places it,
+//     so that the page shows every line of the chapter's code in the order the text uses it; a
+//     helper's `#pragma once` and `\file` lines are left out and its `\brief` becomes a plain
+//     sentence.  A helper no \show_file line places is shown at the end, with a warning;
 //   - a Results section: the program's console output FIGURES/NN-name/output.txt as a
 //     \verbatim block, then results.md (its \image html lines pointed at copies of the figures),
 //     or, without results.md, every PNG in FIGURES/NN-name/;
@@ -35,8 +40,9 @@
 // Usage: literate --chapters DIR --figures DIR --mainpage FILE --work DIR [--strict]
 // With --strict, any warning (a chapter without a \page line, \builds_on naming an unknown
 // page, a figure named in results.md missing after the chapter has run, a prose line ending in
-// a backslash) makes the exit status 2; the pages are written all the same.  An error (an
-// unreadable file, bad arguments) makes it 1.
+// a backslash, a helper file placed by no \show_file line or twice) makes the exit status 2;
+// the pages are written all the same.  An error (an unreadable file, bad arguments) makes
+// it 1.
 
 #include <algorithm>
 #include <cctype>
@@ -460,6 +466,76 @@ void write_programs(const Settings& settings, const Chapter& chapter,
   write_file(dir / (chapter.page + "-plain-" + file + ".txt"), plain);
 }
 
+/// Renders one file of chapter \p chapter into \p page: its prose (`///` lines) verbatim, each
+/// run of its code as a block.  In the program the \page and \builds_on lines are left out; in
+/// a helper file, `#pragma once` and the `\file` line, and its `\brief` is shown as a plain
+/// sentence under the file's name.  A prose line "\show_file name.hpp" renders that helper
+/// file of the chapter in its place (each once; \p shown holds the files already placed).
+void render_file(Page& page, const Chapter& chapter, const fs::path& file,
+                 const std::vector<std::string>& lines, std::set<fs::path>& shown) {
+  const bool program = file == chapter.program;
+  const std::string shown_name = "chapters/" + chapter.dir + "/" + file.filename().string();
+  shown.insert(file);
+  if (!program) {
+    page.add("");
+    page.add("<div class=\"chapter-file\">The file <code>" + shown_name + "</code></div>");
+    page.add("");
+  }
+  std::vector<CodeLine> code;
+  bool page_seen = false;
+  for (std::size_t number = 1; number <= lines.size(); ++number) {
+    const std::string& line = lines[number - 1];
+    const auto prose = prose_text(line);
+    if (!prose) {
+      if (!program && trim(line) == "#pragma once") continue;
+      code.push_back({line, at(file, number)});
+      continue;
+    }
+    // A comment line ending in a backslash continues onto the next line: the compiler would
+    // swallow that line into the comment (LaTeX's "\\" must not end a line).
+    const auto end = line.find_last_not_of(" \t");
+    if (end != std::string::npos && line[end] == '\\') {
+      warn(shown_name + ":" + std::to_string(number) +
+           ": a prose line ends with a backslash, so C++ continues the comment onto the next "
+           "line; move the \\\\ to the start of the next line");
+    }
+    const auto w = words(*prose);
+    std::string text = *prose;
+    if (program && !page_seen && !w.empty() && w[0] == "\\page") {
+      page_seen = true;
+      continue;
+    }
+    if (program && !w.empty() && w[0] == "\\builds_on") {
+      continue;  // read by read_header()
+    }
+    if (!program && !w.empty() && w[0] == "\\file") continue;
+    if (!program && !w.empty() && w[0] == "\\brief")
+      text = trim(text.substr(text.find("\\brief") + 6));
+    if (!w.empty() && w[0] == "\\show_file") {
+      emit_code(page, code);
+      const fs::path helper = file.parent_path() / (w.size() > 1 ? w[1] : "");
+      const bool known = w.size() == 2 && std::find(chapter.helpers.begin(), chapter.helpers.end(),
+                                                    helper) != chapter.helpers.end();
+      if (!known) {
+        warn(at(file, number) + ": \\show_file names no helper file of the chapter (" +
+             trim(*prose) + ")");
+      } else if (shown.count(helper)) {
+        warn(at(file, number) + ": " + w[1] + " is shown already");
+      } else {
+        render_file(page, chapter, helper, split_lines(read_file(helper)), shown);
+      }
+      continue;
+    }
+    emit_code(page, code);
+    page.add(cite_figures(chapter, text, at(file, number)), at(file, number));
+  }
+  emit_code(page, code);
+  if (!program) {
+    page.add("<div class=\"chapter-file-end\">(end of <code>" + shown_name + "</code>)</div>");
+    page.add("");
+  }
+}
+
 /// The page for chapter number \p index.
 Page convert(const Settings& settings, std::vector<Chapter>& chapters, std::size_t index) {
   Chapter& chapter = chapters[index];
@@ -489,50 +565,20 @@ Page convert(const Settings& settings, std::vector<Chapter>& chapters, std::size
   page.add("\\tableofcontents");
   page.add("");
 
-  // The program: prose verbatim, code in blocks; the \page and \builds_on lines are taken out.
-  std::vector<CodeLine> code;
-  bool page_seen = false;
-  for (std::size_t number = 1; number <= lines.size(); ++number) {
-    const std::string& line = lines[number - 1];
-    const auto prose = prose_text(line);
-    if (!prose) {
-      code.push_back({line, at(chapter.program, number)});
-      continue;
-    }
-    // A comment line ending in a backslash continues onto the next line: the compiler would
-    // swallow that line into the comment (LaTeX's "\\" must not end a line).
-    const auto end = line.find_last_not_of(" \t");
-    if (end != std::string::npos && line[end] == '\\') {
-      warn(chapter.shown + ":" + std::to_string(number) +
-           ": a prose line ends with a backslash, so C++ continues the comment onto the next "
-           "line; move the \\\\ to the start of the next line");
-    }
-    const auto w = words(*prose);
-    if (!page_seen && !w.empty() && w[0] == "\\page") {
-      page_seen = true;
-      continue;
-    }
-    if (!w.empty() && w[0] == "\\builds_on") {
-      continue;  // read by read_header()
-    }
-    emit_code(page, code);
-    page.add(cite_figures(chapter, *prose, at(chapter.program, number)),
-             at(chapter.program, number));
-  }
-  emit_code(page, code);
+  // The program: prose verbatim, code in blocks; the \page and \builds_on lines are taken out,
+  // and a "\show_file name.hpp" line is replaced by that helper file, rendered the same way.
+  std::set<fs::path> shown;
+  render_file(page, chapter, chapter.program, lines, shown);
   write_programs(settings, chapter, lines);
 
-  // The helper files, whole.
+  // Helper files that no \show_file line placed: at the end, so that the page still shows
+  // every line of the chapter's code (and a warning: the text should say where each belongs).
   for (const fs::path& helper : chapter.helpers) {
-    page.add("");
-    page.add("<b>The file `chapters/" + chapter.dir + "/" + helper.filename().string() + "`</b>");
-    page.add("");
-    page.add("\\code{.cpp}");
-    const std::vector<std::string> helper_lines = split_lines(read_file(helper));
-    for (std::size_t i = 0; i < helper_lines.size(); ++i) {
-      page.add(helper_lines[i], at(helper, i + 1));
-    }
-    page.add("\\endcode");
+    if (shown.count(helper)) continue;
+    warn("chapters/" + chapter.dir + "/" + helper.filename().string() + ": no '/// \\show_file " +
+         helper.filename().string() +
+         "' line in the chapter places it on the page; it is shown at the end");
+    render_file(page, chapter, helper, split_lines(read_file(helper)), shown);
   }
 
   // Results: the real console output, then results.md or every figure.

@@ -88,7 +88,7 @@
 /// The output is deterministic: it does not depend on the machine or the number of threads.
 
 #include "app/chapter.hpp"
-#include "app/kernel/kernel_figure.hpp"
+#include "kernel_figure.hpp"
 #include "app/text.hpp"
 #include "plot/figure.hpp"
 #include "sph/kernel.hpp"
@@ -136,7 +136,8 @@ double integrate_pieces(F f, int intervals) {
 /// the dimensional W (not the shape) so that the library's \f$ h^{-D} \f$ is tested too.  With
 /// \f$ r = qh \f$ the integral over space becomes one over the two pieces,
 /// \f$ \int W\,dV = S_D\, h \int_0^2 W(qh, h)\, (qh)^{D-1}\, dq \f$, with the surface
-/// \f$ S_D \f$ of the unit sphere from `app::unit_sphere_surface`.
+/// \f$ S_D \f$ of the unit sphere from `app::unit_sphere_surface` (a one-line function that
+/// panel (c) of the figure needs too, so it lives in the file kernel_figure.hpp, shown in Step 6).
 template <int D, class K>
 double kernel_integral(double h, int intervals) {
   return app::unit_sphere_surface(D) * h *
@@ -266,6 +267,10 @@ Row normalisation_row(const std::string& name, double sigma_reference, int inter
   return row;
 }
 
+/// The library's kernel is a template over the dimension and the shape, with the M4 as the
+/// default shape; six aliases name the kernels of the table.  Then the step itself: it builds the
+/// six rows with the papers' normalisations typed in, prints the table, and checks it.
+
 // The kernels of the chapter: the M4 and the Wendland C2 in 1D, 2D and 3D.
 using M4_1 = sph::Kernel<1>;
 using M4_2 = sph::Kernel<2>;
@@ -288,6 +293,10 @@ void step4_normalisation_table(app::Chapter& chapter, int intervals) {
   std::printf("I_D = int_0^2 w(q) q^(D-1) dq, S_D = 2, 2 pi, 4 pi\n\n");
   std::printf("%-11s %1s %12s %12s %12s %12s %11s %9s %9s\n", "kernel", "D", "I_D", "1/(S_D I_D)",
               "sigma (lib)", "sigma (ref)", "int W dV-1", "dW/dr err", "<r^2>/h^2");
+
+  /// Each row is printed and then checked four times, as listed above.  A failed check does not
+  /// stop the program: `chapter.check` records it with a message that quotes the number it found,
+  /// the remaining rows are still printed, and the run ends with the list of failures.
   for (const Row& r : rows) {
     std::printf("%-11s %1d %12.10f %12.10f %12.10f %12.10f %11.2e %9.2e %9.6f\n", r.kernel.c_str(),
                 r.dimension, r.shape_integral, r.sigma_from_integral, r.sigma_library,
@@ -364,6 +373,9 @@ Lobe step5_transform_measured(app::Chapter& chapter, int intervals) {
     worst_fourier =
         std::max(worst_fourier, std::abs(fourier_transform<1, M4_1>(kh, intervals) - bspline));
   }
+
+  /// The 3D search keeps not only the M4's minimum but also where it lies: Step 6 writes its note
+  /// into the figure at that kh.
   Lobe lobe;
   for (int k = 1; k <= 2000; ++k) {
     const double kh = 0.01 * k;
@@ -412,10 +424,10 @@ Lobe step5_transform_measured(app::Chapter& chapter, int intervals) {
 /// The step samples each kernel at \f$ h = 1 \f$ over \f$ 0 \le q \le 2.2 \f$, a little past the
 /// support so that each curve is seen to arrive at zero and stay there, and each transform over
 /// \f$ 0 \le kh \le 20 \f$ with the quadrature of Step 2.  The drawing -- the panels, their labels
-/// and legends, the magnified range of (d) -- is `app::save_kernel_figure`
-/// (`lib/app/kernel/kernel_figure.hpp`); what the chapter decides is what is compared: the colour
-/// gives the dimension, the dash the kernel, and the note in (d) marks the minimum that Step 5
-/// found.
+/// and legends, the magnified range of (d) -- is `app::save_kernel_figure`, in the file
+/// kernel_figure.hpp shown after this step's code; what the chapter decides is what is compared:
+/// the colour gives the dimension, the dash the kernel, and the note in (d) marks the minimum that
+/// Step 5 found.
 
 void step6_figure(const app::Chapter& chapter, int intervals, int samples, const Lobe& lobe) {
   using plot::Dash;
@@ -441,6 +453,13 @@ void step6_figure(const app::Chapter& chapter, int intervals, int samples, const
       {lobe.m4_at + 0.6, lobe.m4_min, "M4 in 3D < 0 near kh = " + app::format("%.1f", lobe.m4_at)});
   std::printf("\nFigure: kernel.png in the output directory\n");
 }
+
+/// The file kernel_figure.hpp holds the drawing: the curves sampled from each kernel and
+/// transform, and the four panels made from them.  It is plotting code, no SPH, but it is the
+/// code that makes the figure, so we show it whole.  It also holds `app::unit_sphere_surface`,
+/// the \f$ S_D \f$ of Steps 1 and 4.
+///
+/// \show_file kernel_figure.hpp
 
 }  // namespace
 

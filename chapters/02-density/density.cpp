@@ -17,16 +17,16 @@
 ///
 /// Three pieces of machinery make the sum affordable and well defined, and they are the new
 /// library code of this chapter:
-///  - the **cell grid** (`lib/sph/neighbours/cell_grid.hpp`) sorts the particles into cubes about
-///    half a kernel radius wide, so that the candidates of a particle are the few cells around it,
-///    with periodic images handled by shifting whole cells;
+///  - the **cell grid** (`lib/sph/neighbours/cell_grid.hpp`) sorts the particles into cubes
+///    about half a kernel radius wide, so that the candidates of a particle are the few cells
+///    around it, with periodic images handled by shifting whole cells;
 ///  - the **neighbour search** (`lib/sph/neighbours.hpp`) chooses each h by a rule and builds a
 ///    symmetric list of pairs closer than \f$ 2\max(h_i, h_j) \f$, shared by every later pass;
 ///    the list does not depend on the number of threads, so neither does anything computed
 ///    from it;
 ///  - the **initial conditions** (`lib/sph/setups/initial_conditions.hpp`,
-///    `lib/sph/setups/relax.hpp`) place particles on lattices, at random, or in a *settled* glass,
-///    and can calibrate the masses so that the SPH density is exactly what we intend.
+///    `lib/sph/setups/relax.hpp`) place particles on lattices, at random, or in a *settled*
+///    glass, and can calibrate the masses so that the SPH density is exactly what we intend.
 ///
 /// We use them to reproduce the density panels of Watkins et al. (1996) Figs 1a and 3a, and
 /// then ask a question the papers do not: how large is the density error of a lattice or a
@@ -46,10 +46,10 @@
 /// -- lattices, glasses, calibrated masses -- come from Steps 3 and 5.
 
 #include "app/chapter.hpp"
-#include "app/density/density_figures.hpp"
-#include "app/density/density_timing.hpp"
-#include "app/density/uniform_set_measures.hpp"
-#include "app/sample_statistics.hpp"
+#include "density_figures.hpp"
+#include "density_timing.hpp"
+#include "uniform_set_measures.hpp"
+#include "sample_statistics.hpp"
 #include "app/stopwatch.hpp"
 #include "app/text.hpp"
 #include "plot/figure.hpp"
@@ -111,6 +111,7 @@ struct Setup {
 /// radius in mean spacings as \f$ 2h/m^{1/3} \f$: at density one a particle's volume is its
 /// mass, and the mean spacing is the side of that volume.)
 
+///
 /// Every set in this chapter fills the periodic unit box with equal masses that make the mean
 /// density one, and starts with Watkins' constant h (`sph::setups::unit_box_particles`, which
 /// chapter 7 uses for the same sets).
@@ -118,7 +119,7 @@ struct Setup {
 using sph::setups::unit_box;
 
 /// The density step itself is two library calls -- the neighbour search with the fixed h, then
-/// the sum -- which `app::timed_density_step` (`lib/app/density/density_timing.hpp`) makes and
+/// the sum -- which `app::timed_density_step` (`density_timing.hpp`, shown in Step 2) makes and
 /// times. Steps 2 and 7 use it; Steps 4 to 6 write the two calls out, with their own box or rule.
 
 void step1_smoothing_length(const Setup& s) {
@@ -175,6 +176,7 @@ void step1_smoothing_length(const Setup& s) {
 /// deviations of a single draw from our averages -- plausible for the one set they drew, though
 /// their mean is a little high.  And the line with the self term: every density 18 % too high.
 
+///
 /// The Poisson scatter of the density without self term,
 /// \f$ \sqrt{(N-1) m^2 (\int W^2 dV - 1)} \f$, with \f$ \int W^2 dV \f$ by the midpoint rule over
 /// the kernel radius.
@@ -189,6 +191,20 @@ double random_scatter_theory(int n, double h) {
   const double m = 1.0 / n;
   return std::sqrt((n - 1) * m * m * (integral - 1.0));
 }
+
+/// Every draw goes through `app::timed_density_step`, the first function of the file
+/// density_timing.hpp, which we show here where the program first calls it.  The rest of the
+/// file is the machinery of Step 7's cost study -- a guard that holds OpenMP to one thread, a
+/// record of runs with what their glasses cost to build, and the sweep over lattices and
+/// glasses -- and Step 7 comes back to it.
+///
+/// \show_file density_timing.hpp
+///
+/// Each draw adds one number to each of two columns, its mean density and its
+/// \f$ \sigma_\rho \f$; the file sample_statistics.hpp turns a column into an average and a
+/// spread.
+///
+/// \show_file sample_statistics.hpp
 
 /// The step draws the sets, prints the paper's numbers, one draw, the average and spread over
 /// the draws, and the theory, and returns the first draw (which Step 3 settles).  It checks
@@ -219,6 +235,9 @@ RandomSets step2_random(app::Chapter& chapter, const Setup& s) {
     app::timed_density_step(p, unit_box<3>(), sph::DensityForm::watkins(true));
     mean_with_self = sph::density_scatter(p.density).mean;
   }
+  /// After the draws each column becomes an average and a spread, which the table sets beside
+  /// the paper and the theory.  The theory needs only N and h, and h is the same in every draw:
+  /// eq A6 sets it from N and the neighbour number alone, so the first draw's h stands for all.
   const app::SampleStatistics mean_stats = app::sample_statistics(means),
                               sigma_stats = app::sample_statistics(sigmas);
   const double h = result.first.smoothing_length[0], mass = result.first.mass[0];
@@ -241,6 +260,8 @@ RandomSets step2_random(app::Chapter& chapter, const Setup& s) {
       "averages\n\n",
       (1.013 - mean_stats.mean) / mean_stats.spread,
       (0.281 - sigma_stats.mean) / sigma_stats.spread);
+  /// The checks compare our averages, which more draws make more certain; the paper's single
+  /// draw is only judged against the spread of one draw, as in the last printed line.
   chapter.check(
       std::abs(mean_stats.mean - expected_mean) < 4 * mean_stats.spread / std::sqrt(s.draws) + 1e-3,
       "random sets: average mean density " + app::format("%.4f", mean_stats.mean) +
@@ -297,6 +318,13 @@ RandomSets step2_random(app::Chapter& chapter, const Setup& s) {
 /// in mean spacings, \f$ \Delta x = N^{-1/3} \f$, so that the check's 0.3 means the same at
 /// every N.
 ///
+/// `app::closest_separation` is the first of the measures of a uniform set that the chapter
+/// keeps in uniform_set_measures.hpp, shown here where the program first calls it.  Step 6
+/// takes the neighbour counts and the spread of h from the same file, and Step 7 the two
+/// density errors it records for every lattice and glass.
+///
+/// \show_file uniform_set_measures.hpp
+///
 /// Each relaxation starts from its own copy of the first random set, so that the three
 /// exponents are compared from one start.  `settle` keeps the relaxed set, the library's report
 /// (the iterations, the scatter at each of them, the mean and scatter of the best set), the
@@ -320,6 +348,10 @@ Settled settle(const sph::Particles<3>& start, double gamma) {
               sph::root<3>(1.0 / static_cast<double>(s.particles.size()));
   return s;
 }
+
+/// The step runs the three relaxations and prints one row for each, under the paper's numbers.
+/// The checks on the scatter and the closest pair apply to every exponent, the one on the mean
+/// only to \f$ \gamma = 2 \f$: `settled[1]`, the glass that the later steps take over.
 
 std::vector<Settled> step3_settled(app::Chapter& chapter, const RandomSets& random) {
   std::printf("Step 3: the first random set settled to uniform density (Watkins Fig. 1a)\n");
@@ -360,8 +392,8 @@ std::vector<Settled> step3_settled(app::Chapter& chapter, const RandomSets& rand
 /// periodic and the same in every direction.  What such a plot can show that the table cannot
 /// is a *trend*: a relaxation that swept particles towards one side, or a random generator with
 /// a preference, would tilt the band.  The drawing is `app::save_density_against_y_figure`
-/// (`lib/app/density/density_figures.hpp`); the chapter supplies the sets, their ranges and titles,
-/// the relaxation histories and the paper's value as the reference line.
+/// (`density_figures.hpp`, shown after the code below); the chapter supplies the sets, their
+/// ranges and titles, the relaxation histories and the paper's value as the reference line.
 
 void draw_watkins_figure(app::Chapter& chapter, const Setup& s, const RandomSets& random,
                          const std::vector<Settled>& settled) {
@@ -386,6 +418,11 @@ void draw_watkins_figure(app::Chapter& chapter, const Setup& s, const RandomSets
            ", \\sigma = " + app::format("%.3f", random.first_sigma) + " (paper 1.013, 0.281)"},
       relaxations, {0.004, "Watkins: \\sigma = 0.004"});
 }
+
+/// The drawing of all three of the chapter's figures is in density_figures.hpp, shown here with
+/// its first use; Steps 4 and 7 call its other two functions.
+///
+/// \show_file density_figures.hpp
 
 /// \section ch02_lattice Step 4: the density of a lattice, and why it is not exact
 ///
@@ -518,6 +555,10 @@ LatticeScan step4_lattice_bias(app::Chapter& chapter, const Setup& s) {
       worst_spread = std::max(worst_spread, spread);
     }
   }
+  /// The figure uses the whole scan.  The table measures its five values of \f$ \eta \f$ again
+  /// rather than look them up, so that they are exact whatever the step of the scan (with
+  /// `--quick` the scan misses 1.24).  Its last column is eq A5's neighbour number in 3D,
+  /// \f$ \tfrac43\pi(2\eta)^3 \f$.
   std::printf(
       "Step 4: density bias rho_SPH/rho_0 - 1 of periodic lattices, m = rho_0 dx^D,\n"
       "  h = eta dx (dx = mean spacing)\n");
@@ -552,8 +593,9 @@ LatticeScan step4_lattice_bias(app::Chapter& chapter, const Setup& s) {
 /// \f$ \eta \f$ (0.05 with `--quick`), because the 3D curves turn quickly: the cubic lattice
 /// goes from +0.08 % at \f$ \eta = 1.2 \f$ to \f$ -0.11\% \f$ at 1.24.  Look for the 1D curve
 /// touching zero at \f$ \eta = 1 \f$ and 2 and never crossing it, for the 2D and 3D curves that
-/// do cross, and, on the right, for every curve falling under the dotted bound beyond
-/// \f$ \eta \approx 1.6 \f$.  The drawing is `app::save_lattice_bias_figure`.
+/// do cross, and, on the right, for every curve staying under the dotted bound from
+/// \f$ \eta = 1.5 \f$ on.  The drawing is `app::save_lattice_bias_figure`, in
+/// density_figures.hpp (shown at the end of Step 3).
 
 void draw_lattice_figure(app::Chapter& chapter, const LatticeScan& scan) {
   std::vector<app::LatticeBiasCurve> lattices;
@@ -634,6 +676,9 @@ void step5_calibration(app::Chapter& chapter, const Setup& s, const Settled& gla
       "    m N / M = %.6f\n",
       side, lattice.smoothing_length[0] * side, on_lattice.initial_error, on_lattice.final_error,
       on_lattice.iterations, lattice.mass[0] * side * side * side);
+  /// The glass is the \f$ \gamma = 2 \f$ set of Step 3, copied twice: one copy for the
+  /// per-particle iteration, one for the mean-only correction.  The latter needs no search: it
+  /// scales the masses, and the densities the set already carries, by one factor.
   // The glass: per particle (30 sweeps), and the mean alone.
   auto per_particle = glass.particles, mean_only = glass.particles;
   search.update(per_particle, unit_box<3>(), sph::SmoothingLengthRule::fixed());
@@ -709,6 +754,10 @@ struct RuleResult {
   double mean_count = 0, h_spread = 0, seconds = 0, worst_a6 = 0;
 };
 
+/// `apply_rule` takes the set by value, so that every rule starts from the same positions and
+/// the same h, and times the search under its rule together with one density pass.  The counts
+/// and the spread of h are the measures of uniform_set_measures.hpp (shown in Step 3).
+
 RuleResult apply_rule(sph::Particles<3> p, const std::string& name,
                       const sph::SmoothingLengthRule& rule, double neighbours) {
   RuleResult r{name};
@@ -730,6 +779,10 @@ RuleResult apply_rule(sph::Particles<3> p, const std::string& name,
   }
   return r;
 }
+
+/// The step applies the three rules to both sets and prints one table.  Only the two adaptive
+/// rules make a promise, so only they are checked: `results[1]` is the neighbour-number rule,
+/// `results[2]` the density rule.
 
 void step6_rules(app::Chapter& chapter, const Setup& s, const Settled& glass,
                  const RandomSets& random) {
@@ -796,8 +849,9 @@ void step6_rules(app::Chapter& chapter, const Setup& s, const Settled& glass,
 /// particle does not all scale with the kernel, and scattered, since the shortest runs take
 /// milliseconds.
 
-/// The sweep is `app::run_density_cost_sweep` (`lib/app/density/density_timing.hpp`).  It runs on
-/// one thread, so that the times compare across N even on a shared machine (the smallest sets,
+///
+/// The sweep is `app::run_density_cost_sweep` (`density_timing.hpp`, shown in Step 2).  It runs
+/// on one thread, so that the times compare across N even on a shared machine (the smallest sets,
 /// below `sph::parallel_threshold`, run on one thread anyway).  Each set's density step is run
 /// three times and the shortest time kept: other work on the machine can only slow a run down,
 /// never speed it up, so the minimum is the best estimate of the step's own cost, and the
@@ -813,11 +867,13 @@ void step6_rules(app::Chapter& chapter, const Setup& s, const Settled& glass,
 /// \f$ \ln \text{error} \f$ against \f$ \ln t \f$, more negative when a method buys more accuracy
 /// per second.  A line that is flat in \f$ \Delta x \f$ has both near zero, whatever its times.
 
+///
 /// The step checks the two findings the figure is about: a lattice's error does not change with
 /// N at all (to \f$ 10^{-9} \f$ relative: at every N it is the same sum over the same shells,
 /// and only round-off differs), and every glass stays below 2 % RMS.  The figure is
 /// the shared error-against-time figure of `lib/app/error_figure.hpp`, with the y range widened
-/// so that the legend finds room under the lines (`app::save_density_cost_figure`).
+/// so that the legend finds room under the lines (`app::save_density_cost_figure`, in
+/// density_figures.hpp, shown in Step 3).
 
 void step7_cost(app::Chapter& chapter, const Setup& s) {
   std::printf("Step 7: density error against run time (3D, periodic unit box)\n");
@@ -865,6 +921,7 @@ void step7_cost(app::Chapter& chapter, const Setup& s) {
 /// where Step 5's calibration matters, because each side's bias (Step 4) would otherwise put a
 /// pressure jump at the interface that nobody asked for.
 
+///
 /// \section ch02_main The main program
 ///
 /// `main` reads the parameters -- `--particles` and `--neighbours` change the static tests,

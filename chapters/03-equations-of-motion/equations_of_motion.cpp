@@ -174,20 +174,19 @@
 ///
 /// \section ch03_exact The exact solution, and how to read it
 ///
-/// Every number this chapter prints is measured against the exact solution of the Riemann
-/// problem (lib/sph/reference/riemann.hpp, the exact solver of Toro's book), so it is worth
-/// knowing its shape before we look at any run.  Released at \f$ t = 0 \f$, Sod's interface breaks
-/// into four waves, whose speeds Step 1 prints: the head and the tail of a **rarefaction** running
-/// left into the dense gas (speeds \f$ -1.183 \f$ and \f$ -0.070 \f$), a **contact
-/// discontinuity** moving right with the gas (\f$ u_* = 0.927 \f$), and a **shock** running
-/// right into the thin gas (1.752).  At \f$ t = 0.2 \f$ they stand at \f$ x = -0.237 \f$,
-/// \f$ -0.014 \f$, \f$ 0.185 \f$ and \f$ 0.350 \f$.  Between the tail and the shock lies the
-/// *star region*, where pressure and velocity are constant, \f$ p_* = 0.303 \f$ and
-/// \f$ u_* = 0.927 \f$, and only the density jumps, at the contact, from
-/// \f$ \rho_{*L} = 0.426 \f$ (gas that came from the left, expanded) to
-/// \f$ \rho_{*R} = 0.266 \f$ (gas that came from the right, shocked).  All four waves stay
-/// inside the window \f$ -0.5 \le x \le 0.5 \f$ in which we measure, and the waves of the
-/// periodic tube's second interface at \f$ x = \pm 1 \f$ do not reach it.
+/// Every number this chapter prints is measured against the exact solution of the Riemann problem
+/// (lib/sph/reference/riemann.hpp, the exact solver of Toro's book), so it is worth knowing its
+/// shape before we look at any run.  Released at \f$ t = 0 \f$, Sod's interface breaks into four
+/// waves, whose speeds Step 1 prints: the head and the tail of a **rarefaction** running left into
+/// the dense gas (speeds \f$ -1.183 \f$ and \f$ -0.070 \f$), a **contact discontinuity** moving
+/// right with the gas (\f$ u_* = 0.927 \f$), and a **shock** running right into the thin gas
+/// (1.752).  At \f$ t = 0.2 \f$ they stand at \f$ x = -0.237 \f$, \f$ -0.014 \f$, \f$ 0.185 \f$ and
+/// \f$ 0.350 \f$.  Between the tail and the shock lies the *star region*, where pressure and
+/// velocity are constant, \f$ p_* = 0.303 \f$ and \f$ u_* = 0.927 \f$, and only the density jumps,
+/// at the contact, from \f$ \rho_{*L} = 0.426 \f$ (gas that came from the left, expanded) to
+/// \f$ \rho_{*R} = 0.266 \f$ (gas that came from the right, shocked).  All four waves stay inside
+/// the window \f$ -0.5 \le x \le 0.5 \f$ in which we measure, and the waves of the periodic tube's
+/// second interface at \f$ x = \pm 1 \f$ do not reach it.
 ///
 /// The gas behind the shock is where the chapter's story happens.  Its density
 /// \f$ \rho_{*R} = 2.12\,\rho_R \f$ and pressure \f$ p_* \f$ give it, by the ideal-gas law
@@ -205,7 +204,9 @@
 /// colliding-stream set-up `lib/sph/setups/colliding_streams.hpp`, the penetration diagnostic
 /// `lib/sph/measures/penetration.hpp`, and two runners that build a scene, integrate it and keep
 /// what we measure, `lib/app/shock_tube_run.hpp` (which chapter 4 shares) and
-/// `lib/app/colliding_streams_run.hpp`.
+/// `lib/app/colliding_streams_run.hpp`.  Two files of the chapter's own draw its figures'
+/// additions, and this page shows them where a step first uses them: `figure_lines.hpp` at the end
+/// of Step 5, and `colliding_streams_figure.hpp` at the end of Step 6.
 ///
 /// The steps hand their results on.  Step 1 makes the three runs of Sod's tube and returns
 /// them; Steps 2 to 5 only look at those runs, each from its own angle, and return what they
@@ -217,9 +218,9 @@
 #include "app/chapter.hpp"
 #include "app/colliding_streams_run.hpp"
 #include "app/curve_reading.hpp"
-#include "app/equations_of_motion/colliding_streams_figure.hpp"
+#include "colliding_streams_figure.hpp"
 #include "app/error_figure.hpp"
-#include "app/figure_lines.hpp"
+#include "figure_lines.hpp"
 #include "app/shock_tube_figure.hpp"
 #include "app/shock_tube_run.hpp"
 #include "app/text.hpp"
@@ -344,6 +345,12 @@ struct Parameters {
   sph::MonaghanGingold1983 viscosity() const { return {alpha, beta}; }
 };
 
+/// `declare_parameters` gives each option its default, its `--quick` default where it has one,
+/// and its range.  A count such as `--cells` is checked with app::count_between, which refuses
+/// a value too large with the memory it would need.  The first options fix the resolution of
+/// the tube.  Whether Step 3's post-shock window holds any particle depends on both `--cells`
+/// and `--neighbours`, so a condition that the program checks after reading all options ties
+/// the two together.
 void declare_parameters(app::Chapter& chapter, Parameters& par) {
   // (coarser than 300, the post-shock window holds no particle; the tube holds 1.125 cells
   // particles per unit length, two units long, and its cost grows as cells^2)
@@ -370,6 +377,9 @@ void declare_parameters(app::Chapter& chapter, Parameters& par) {
                " or more (Step 3's post-shock window, 4h from the contact and from the shock, " +
                "holds no particle otherwise), got " + app::show(par.cells);
       });
+  /// The remaining options set the time step, the viscosity of the contrast runs, the colliding
+  /// streams of Step 6 and the length of Step 7's sweep.  `set_resolution` below turns the two
+  /// resolutions, given as counts per unit length, into the spacings the set-ups use.
   // (at 0.9 the inviscid tube's post-shock oscillations grow until a particle's energy turns
   // negative)
   chapter.parameter("--courant", par.sod.courant, "Courant factor epsilon of eq 7")
@@ -459,6 +469,8 @@ app::TubeRun<dim> run_sod(const std::string& name, const SodScene& scene,
       {.t_end = scene.t_end, .courant = scene.courant, .label = name, .report = report});
 }
 
+/// The step itself prints the exact solution and the resolution, makes the three runs, and
+/// writes each final state as a snapshot whose file name says which scheme made it.
 SodRuns step1_sod_runs(const app::Chapter& chapter, const Parameters& par) {
   const SodScene& sod = par.sod;
   const sph::RiemannSolution exact(sod.tube.left, sod.tube.right, sod.tube.gamma);
@@ -641,6 +653,10 @@ struct StarRegion {
   int count = 0;                // particles in it
 };
 
+/// `StarRegion` keeps the window with the measurements, so that Step 5 can mark it in the
+/// figure of the inviscid run.  The pressure loop covers the whole star region, from the
+/// rarefaction's tail to the shock; the velocity and energy sums cover only the shocked gas
+/// between the contact and the shock, where the exact solution is a single constant state.
 template <int D>
 StarRegion star_region(const app::TubeRun<D>& run, const SodScene& scene) {
   static_assert(D == 1, "the post-shock smoothing length below is the 1D rule");
@@ -702,6 +718,10 @@ struct StarTable {
   double u_adiabat = 0;  // u after an adiabatic compression to the same density
 };
 
+/// The two reference values of u come from the exact solution and the initial state.  The
+/// Hugoniot value is the exact u sampled in the middle of the post-shock window; the adiabatic
+/// one carries the right state's u along \f$ u \propto \rho^{\gamma-1} \f$ (which holds
+/// \f$ P/\rho^\gamma \f$ constant) up to the exact post-shock density \f$ \rho_{*R} \f$.
 StarTable step3_star_region(const SodRuns& runs, const Parameters& par) {
   const SodScene& sod = par.sod;
   const sph::RiemannSolution& exact = runs.inviscid.exact;
@@ -850,9 +870,9 @@ FrontTable step4_wave_fronts(const SodRuns& runs, const Parameters& par) {
 ///
 /// `sod_figure` fills the stamp and hands the particles to app::shock_tube_figure, which also
 /// draws the exact solution of the run's own tube.  app::add_exact_lines
-/// (lib/app/figure_lines.hpp) draws another exact solution into the same four panels, here the
-/// equivalent gas with the factor 2 its `Reference` carries.  Its pressure is doubled, like
-/// the run's, but its internal energy is not: the printed scheme's
+/// (figure_lines.hpp, shown at the end of this step) draws another exact solution into the same
+/// four panels, here the equivalent gas with the factor 2 its `Reference` carries.  Its pressure
+/// is doubled, like the run's, but its internal energy is not: the printed scheme's
 /// \f$ P = (\gamma - 1)\rho u \f$ and the equivalent gas's
 /// \f$ P' = P/2 = (\gamma' - 1)\rho u \f$ describe the same u.
 
@@ -912,6 +932,14 @@ void step5_figures(const app::Chapter& chapter, const SodRuns& runs, const StarT
   figure.save_png(chapter.figure_path("sod_as_printed.png").string());
 }
 
+/// The prediction's dashed lines come from the file `figure_lines.hpp`.  It holds two small
+/// functions that draw into a figure already made: app::add_exact_lines, used just above, which
+/// samples a Riemann solution across the window and adds its four profiles to the four panels;
+/// and app::add_slope_guide, which Step 7 uses to lay a guide line of a given slope on its
+/// error figure.
+///
+/// \show_file figure_lines.hpp
+///
 /// \section ch03_streams Step 6: two colliding streams
 ///
 /// Two slabs of cold gas (\f$ \rho = 1 \f$, \f$ \gamma = 5/3 \f$, Mach number 10) run into
@@ -976,23 +1004,23 @@ app::StreamsRun<dim> run_streams(const std::string& name, const StreamsScene& sc
 /// \subsection ch03_inversions Counting particles that have passed each other
 ///
 /// sph::order_inversions (lib/sph/measures/penetration.hpp) sorts the particles by their initial x
-/// and counts the pairs whose order has flipped.  It reports two counts, and the difference
-/// matters here.  *Adjacent* inversions -- initially neighbouring particles now in reverse
-/// order -- catch any local overturning, but two streams that pass through each other keep
-/// their own order: only the one pair that met first is adjacent and inverted.  *All*
-/// inversions count every pair that has crossed, and grow like the square of the overlap; with
-/// n particles per stream that have passed each other there are about \f$ n^2/2 \f$ of them.
-/// The deepest penetration, the furthest any particle has gone past one that started ahead of
-/// it, is the third number: for streams that never stop it is \f$ 2 v_0 t \f$.
+/// and counts the pairs whose order has flipped.  It reports two counts, and the difference matters
+/// here.  *Adjacent* inversions -- initially neighbouring particles now in reverse order -- catch
+/// any local overturning, but two streams that pass through each other keep their own order: only
+/// the one pair that met first is adjacent and inverted.  *All* inversions count every pair that
+/// has crossed, and grow like the square of the overlap; with n particles per stream that have
+/// passed each other there are about \f$ n^2/2 \f$ of them.  The deepest penetration, the furthest
+/// any particle has gone past one that started ahead of it, is the third number: for streams that
+/// never stop it is \f$ 2 v_0 t \f$.
 ///
-/// The x-t diagram draws the paths of each run, the right-moving stream in blue and the
-/// left-moving one in red, so that crossing paths are penetration.  The figure is drawn by
-/// app::save_colliding_streams_figure (lib/app/equations_of_motion/colliding_streams_figure.hpp):
-/// the three diagrams in panels (a) to (c), on the same axes, a run that stopped early ending at a
-/// dotted line at the time it reached; and in (d) the final densities of the two runs that reached
-/// the end, against the exact solution.  The pile-up run is left out of (d): it stopped long
-/// before the time the panel shows, and its sheet, thousands of times denser than the streams,
-/// lies far above the panel's scale.
+/// The x-t diagram draws the paths of each run, the right-moving stream in blue and the left-moving
+/// one in red, so that crossing paths are penetration.  The figure is drawn by
+/// app::save_colliding_streams_figure (`colliding_streams_figure.hpp`, shown at the end of this
+/// step): the three diagrams in panels (a) to (c), on the same axes, a run that stopped early
+/// ending at a dotted line at the time it reached; and in (d) the final densities of the two runs
+/// that reached the end, against the exact solution.  The pile-up run is left out of (d): it
+/// stopped long before the time the panel shows, and its sheet, thousands of times denser than the
+/// streams, lies far above the panel's scale.
 
 /// The step makes three runs: inviscid with h from the neighbour number, inviscid with h from
 /// the density (with its step budget), and viscous with h from the neighbour number.  For each
@@ -1043,6 +1071,9 @@ StreamRuns<dim> step6_colliding_streams(const app::Chapter& chapter, const Param
           format("Monaghan-Gingold AV, %g neighbours", scene.neighbours), scene,
           {{}, par.viscosity()}, neighbour_rule, unlimited)};
   s.dx = scene.setup.length / s.passing.left_count;
+  /// The table has one row per run.  A run that stopped early gets a second line with the reason
+  /// the runner recorded and its last time step: for the pile-up run, the step budget spent and
+  /// a step shrunk to almost nothing.
   std::printf(
       "  %d particles per stream, %zu pairs; deepest: how far a particle has passed one\n"
       "  that started ahead of it, in initial spacings\n",
@@ -1061,6 +1092,9 @@ StreamRuns<dim> step6_colliding_streams(const app::Chapter& chapter, const Param
       std::printf("%s\n", app::wrap(why, 100, 38).c_str());
     }
   }
+  /// The two runs with a fixed neighbour number, which at the defaults both reach the end, leave
+  /// snapshots of their final states.  All three runs go into the figure, and those two also
+  /// into its density panel.
   const auto snapshot = [&chapter](const char* stem) {
     return chapter.figure_path(sph::snapshot_path("", stem, 1)).string();
   };
@@ -1078,18 +1112,25 @@ StreamRuns<dim> step6_colliding_streams(const app::Chapter& chapter, const Param
   return s;
 }
 
+/// The figure is drawn by the file `colliding_streams_figure.hpp`.  It reads the paths and the
+/// times that app::run_colliding_streams recorded and draws one x-t diagram per run; for panel
+/// (d) it samples the exact solution of the set-up itself, from sph::make_colliding_streams,
+/// so that the figure needs nothing from the step but the runs.
+///
+/// \show_file colliding_streams_figure.hpp
+///
 /// \section ch03_error Step 7: error against run time
 ///
-/// The last question of every chapter with a reference solution: how does the error fall as
-/// we pay for more particles?  We run Sod's tube at left spacings \f$ \Delta x = 1/100 \f$ to
+/// The last question of every chapter with a reference solution: how does the error fall as we pay
+/// for more particles?  We run Sod's tube at left spacings \f$ \Delta x = 1/100 \f$ to
 /// \f$ 1/3200 \f$ (`--levels` of them, doubling the resolution each time), without and with
 /// viscosity, and hand each run to sph::ErrorVsTime (lib/sph/measures/convergence.hpp), which
 /// prints the table, fits the order p in \f$ L_1 \propto \Delta x^p \f$ and the cost slope s in
-/// \f$ L_1 \propto t_\mathrm{run}^s \f$.  For a shock tube p = 1 is the best one can hope
-/// for: the shock is smeared over a few h, and \f$ h \propto \Delta x \f$.  In 1D the cost
-/// grows like \f$ N^2 \f$ (N particles, and a time step \f$ \propto h \propto 1/N \f$), so
-/// first order in \f$ \Delta x \f$ is \f$ s = -1/2 \f$.  The number of particles N recorded for
-/// each run is the number in the window we measure.
+/// \f$ L_1 \propto t_\mathrm{run}^s \f$.  For a shock tube p = 1 is the best one can hope for: the
+/// shock is smeared over a few h, and \f$ h \propto \Delta x \f$.  In 1D the cost grows like
+/// \f$ N^2 \f$ (N particles, and a time step \f$ \propto h \propto 1/N \f$), so first order in
+/// \f$ \Delta x \f$ is \f$ s = -1/2 \f$.  The number of particles N recorded for each run is the
+/// number in the window we measure.
 ///
 /// We already know what to expect without viscosity.  Nothing damps the ringing, and its
 /// amplitude is set by the energy budget of the shock, \f$ \sim\sqrt{2\Delta u} \f$, not by the
@@ -1122,12 +1163,12 @@ void sweep_sod(sph::ErrorVsTime& study, const std::string& method, SodScene scen
   }
 }
 
-/// The error figure of lib/app/error_figure.hpp, with a guide line \f$ \propto t^{-1/2} \f$
-/// through the finest viscous run (app::add_slope_guide, lib/app/figure_lines.hpp) and the
+/// The error figure of lib/app/error_figure.hpp, with a guide line \f$ \propto t^{-1/2} \f$ through
+/// the finest viscous run (app::add_slope_guide of figure_lines.hpp, shown in Step 5) and the
 /// legends moved to where the curves are not.  A curve parallel to the guide line converges at
 /// first order; a flat curve does not converge.  We draw two panels, \f$ L_1(\rho) \f$ and
-/// \f$ L_1(v) \f$, of the three quantities measured: the pressure error follows the density
-/// error closely in every row of the table, and a third panel would repeat the first.
+/// \f$ L_1(v) \f$, of the three quantities measured: the pressure error follows the density error
+/// closely in every row of the table, and a third panel would repeat the first.
 void save_error_figure(const sph::ErrorVsTime& study, const SodScene& scene, int finest,
                        const std::string& path) {
   app::ErrorFigureOptions options;
@@ -1240,6 +1281,9 @@ struct Findings {
   const sph::ErrorVsTime& study;
 };
 
+/// `Findings` holds references to what the steps returned, so `check_claims` reads the very
+/// numbers the steps printed and measures nothing itself.  Claim 1 comes first, for each of the
+/// three runs of Sod's tube.
 void check_claims(app::Chapter& chapter, const Findings& f) {
   std::printf("\n");
   for (const auto* run : f.sod.all()) {
@@ -1249,6 +1293,8 @@ void check_claims(app::Chapter& chapter, const Findings& f) {
     chapter.check(run->energy_change < 2e-3, format("%s: energy changed by %.2e (> 2e-3)",
                                                     run->name.c_str(), run->energy_change));
   }
+  /// Claims 2 to 4 compare the inviscid run with Sod's exact solution and with the viscous run:
+  /// the fronts of Step 4, the post-shock gas of Step 3, and the density errors of Step 2.
   const Fronts &sod = f.fronts.sod_gas, &inviscid = f.fronts.inviscid, &printed = f.fronts.printed;
   const StarRegion &star = f.star.inviscid, &viscous = f.star.viscous;
   const sph::RiemannSolution& exact = f.sod.inviscid.exact;
@@ -1273,6 +1319,8 @@ void check_claims(app::Chapter& chapter, const Findings& f) {
   chapter.check(f.errors.viscous.density < 0.25 * f.errors.inviscid.density,
                 format("viscous L1(rho) = %.3e is not 4x below the inviscid %.3e",
                        f.errors.viscous.density, f.errors.inviscid.density));
+  /// Claim 5 asks two things of the printed eq 4: that it is wrong for Sod's gas, and that it
+  /// is right for the gas the analysis says it simulates.
   chapter.check(std::abs(printed.shock - sod.shock) > 0.2 * sod.shock &&
                     std::abs(printed.head - sod.head) > 0.2 * std::abs(sod.head),
                 format("eq 4 as printed: head %.4f, shock %.4f are not 20 %% slow", printed.head,
@@ -1284,6 +1332,8 @@ void check_claims(app::Chapter& chapter, const Findings& f) {
   chapter.check(f.errors.printed_own.density < 0.5 * f.errors.printed.density,
                 format("eq 4 as printed: L1(rho) %.3e against the prediction, %.3e against Sod",
                        f.errors.printed_own.density, f.errors.printed.density));
+  /// Claims 6 and 7 read the inversion counts of the three stream runs of Step 6 and the orders
+  /// that Step 7 fitted to its sweep.
   const StreamRuns<dim>& s = f.streams;
   chapter.check(
       s.passing.inversions.all > 0 && s.passing.inversions.deepest > 10 * s.dx,
@@ -1301,6 +1351,8 @@ void check_claims(app::Chapter& chapter, const Findings& f) {
   chapter.check(order_viscous > 0.7,
                 format("viscous L1(rho) converges at order %.2f (expected > 0.7)", order_viscous));
 
+  /// Last come the summary lines for the table of all chapters: the density errors of Step 2,
+  /// the ringing of Step 3 and the inversions of Step 6.
   chapter.summary("error", format("L1(rho) = %.4f (no AV), %.5f (AV), %.4f (eq 4 as printed), "
                                   "N = %d",
                                   f.errors.inviscid.density, f.errors.viscous.density,

@@ -126,7 +126,7 @@
 /// returns the numbers the checks at the end need; the figures are written to the output
 /// directory (`--output`) on the way.
 
-#include "app/artificial_viscosity/lattice_sums_figure.hpp"
+#include "lattice_sums_figure.hpp"
 #include "app/chapter.hpp"
 #include "app/curve_reading.hpp"
 #include "app/error_figure.hpp"
@@ -211,6 +211,10 @@ struct Levers {
   }
 };
 
+/// `run_tube` turns the levers into a run.  The time-step rule and the Courant factor are
+/// settings of the run; walls and grad-h choose the scene.  Walls exist only in 1D (the
+/// `if constexpr` branch), where they also shorten the tube to the window's length; every other
+/// tube runs on a periodic scene, with or without grad-h.
 template <int D>
 app::TubeRun<D> run_tube(sph::ShockTubeSetup setup, const sph::SmoothingLengthRule& rule,
                          const sph::MonaghanGingold1983& viscosity, double t_end,
@@ -301,6 +305,9 @@ struct Parameters {
   }
 };
 
+/// `declare_parameters` gives each option its help text and its range; parse() refuses a value
+/// outside the range before any work starts, with a message naming the option.  The two states
+/// and \f$ \gamma \f$ come from app::declare_tube_states, with the ranges quoted above.
 void declare_parameters(app::Chapter& chapter, Parameters& par) {
   app::declare_tube_states(chapter, par.tube);
   chapter.parameter("--alpha", par.alpha, "bulk (linear) viscosity coefficient")
@@ -322,6 +329,9 @@ void declare_parameters(app::Chapter& chapter, Parameters& par) {
   chapter.flag("--grad-h", par.levers.grad_h,
                "Step 6's lever 3 in Steps 1, 2, 3 and 5: the pressure force with the grad-h "
                "correction");
+  /// Two conditions span several options, so no single range can state them: `require` checks
+  /// each after all options are read.  Walls need both gases at rest, and the states must make
+  /// Sod's pattern of waves, which we ask the exact solver before anything runs.
   chapter.require(
       [&par] {
         return !par.levers.walls || (par.tube.left.velocity == 0 && par.tube.right.velocity == 0);
@@ -392,6 +402,9 @@ void declare_resolutions(app::Chapter& chapter, Parameters& par) {
                  "1D: N in h = N m / (4 rho) (below 8/3, h collapses to zero; above 6, Step 5's "
                  "coarsest Sod tube has no interior)")
       .check(app::between(2.7, 6.0));
+  /// The 1D condition of the text, tested on the coarsest 1D tube any step builds: Step 1's
+  /// coarser tube or Step 5's coarsest, whichever has fewer particles per unit length.  The
+  /// message quotes the resolution the neighbour number needs.
   const auto coarsest_1d = [&chapter, &par] {
     return std::min(par.sod_1d / 4, chapter.quick() ? 100 : 200);
   };
@@ -408,6 +421,8 @@ void declare_resolutions(app::Chapter& chapter, Parameters& par) {
                            "in Step 1), else the thinner side has no interior; the coarsest " +
                            "has " + app::show(coarsest_1d());
                   });
+  /// The same for 3D, with the cube-root condition of the text and the coarser of `--sod-3d`
+  /// and Step 5's coarsest 3D tube.
   chapter
       .parameter("--neighbours-3d", par.neighbours_3d,
                  "3D: neighbour number for Sod (above 110, Step 5's coarsest Sod tube has no "
@@ -526,6 +541,8 @@ Sod1D step1_sod_1d(const app::Chapter& chapter, const Parameters& par) {
   std::printf(
       "  N(window) N(tube) steps wall [s]  L1(rho)    L1(v)      L1(P)      target    "
       "other code\n");
+  /// Each resolution comes with its target.  The coarser tube is always a quarter of
+  /// `--sod-1d`, so the two rows stay a factor of four apart, the factor the targets assume.
   Sod1D result;
   // (resolution, target): 800 per unit length puts 450 particles in the window, 3200 puts 1800.
   const std::pair<int, double> resolutions[] = {{par.sod_1d / 4, 0.003}, {par.sod_1d, 0.001}};
@@ -545,6 +562,10 @@ Sod1D step1_sod_1d(const app::Chapter& chapter, const Parameters& par) {
                 run.particles.size(), run.steps, run.seconds, errors[0].L1, errors[1].L1,
                 errors[2].L1, ("<= " + format("%g", target)).c_str(), reference);
     result.rows.push_back({resolution, target, in_window, errors[0].L1, run.momentum_drift});
+    /// The rest of the loop is for the finer run alone: its momentum drift and what limited
+    /// its last step; with walls, the x momentum they pushed into the gas, which should match
+    /// \f$ (p_L - p_R)\,t \f$, the net push of the two end pressures over the run; then the
+    /// figure and the snapshot.
     if (resolution != par.sod_1d) continue;
     std::printf("  momentum drift |dP|/sum|mv| = %.1e; last step limited by: %s\n",
                 run.momentum_drift, run.limit.c_str());
@@ -640,11 +661,20 @@ LatticeSums lattice_sums_1d(double eta) {
 /// density with \f$ N = 4\eta \f$ neighbours, so \f$ h = \eta\,\Delta x \f$ on the initial
 /// lattice.  The step collects, for each \f$ \eta \f$, the two sums and the error into an
 /// app::LatticeSumsCurves, which both the figure and the checks read: the figure is drawn by
-/// app::save_lattice_sums_figure (lib/app/artificial_viscosity/lattice_sums_figure.hpp), whose log
+/// app::save_lattice_sums_figure (in lattice_sums_figure.hpp, shown below), whose log
 /// scale cannot show an exact zero, so departures below \f$ 10^{-7} \f$ are drawn at \f$ 10^{-7}
 /// \f$; the checks compare the error at \f$ \eta = 1 \f$ with the one nearest 1.2.  The tube is
 /// built anew at each \f$ \eta \f$, the same tube every time, because the masses are calibrated for
 /// the smoothing length the rule will give, and that changes with \f$ \eta \f$.
+///
+/// The curves and the figure come from the file lattice_sums_figure.hpp, which we
+/// show here, before the step that fills them: a struct that holds one entry per
+/// \f$ \eta \f$, and a function that draws the two panels side by side.
+///
+/// \show_file lattice_sums_figure.hpp
+///
+/// Back in the program, the step scans \f$ \eta \f$, runs one tube for each value, and hands
+/// the curves to the figure and, as its result, to the checks.
 
 app::LatticeSumsCurves step2_lattice_sums(const app::Chapter& chapter, const Parameters& par) {
   const int resolution = 400;
@@ -803,6 +833,9 @@ MultiD step3_sod_2d_3d(const app::Chapter& chapter, const Parameters& par) {
   }
   std::printf("\n");
 
+  /// Then the three runs.  The smoothing-length rules carry the tolerances of the text, and
+  /// one set-up serves all three, changed between them: the coarse lattice start first, then
+  /// the glass starts at `--sod-2d` and `--sod-3d`.
   const sph::MonaghanGingold1983 viscosity = par.viscosity();
   const auto rule_2d = sph::SmoothingLengthRule::neighbour_number(par.neighbours_2d, 1);
   const auto rule_3d = sph::SmoothingLengthRule::neighbour_number(par.neighbours_3d, 2);
@@ -818,6 +851,9 @@ MultiD step3_sod_2d_3d(const app::Chapter& chapter, const Parameters& par) {
   const app::TubeRun<3> sod3 =
       run_tube<3>(multi, rule_3d, viscosity, par.t_end, "Sod 3D", par.levers);
 
+  /// The table lists the glass starts first and the lattice start last.  What the checks need
+  /// -- the 3D glass start's error and momentum drift, and the plateau pressures of both 3D
+  /// starts -- goes into `MultiD`.
   std::printf("\n  Sod 2D and 3D, t = %g\n", par.t_end);
   std::printf(
       "  dim  start    N(tube)  ngb  steps  wall [s]  us/particle-step  L1(rho)    L1(v)"
@@ -837,6 +873,8 @@ MultiD step3_sod_2d_3d(const app::Chapter& chapter, const Parameters& par) {
       result.p_star, result.p_lattice, 100 * (result.p_lattice / result.p_star - 1), result.p_glass,
       100 * (result.p_glass / result.p_star - 1));
 
+  /// The two figures: the 2D glass start alone, and the 3D glass start with the lattice start
+  /// drawn in grey behind it, so that the stalled rarefaction shows beside the cured one.
   const std::string scheme = viscosity.describe();
   app::shock_tube_figure(
       {app::make_profile(sod2.particles, "SPH, glass start")}, sod2.exact, par.t_end,
@@ -1314,6 +1352,9 @@ struct RaceRuns {
   std::vector<std::pair<double, double>> points[2][2][2];  // [eta][plain, grad-h][rho, v]
 };
 
+/// The part runs on one thread, as the other code does: it notes OpenMP's thread count, sets
+/// it to one, and restores it at the end.  The resolutions are the series above, rounded to
+/// whole particles per unit length.
 RaceRuns race_error_against_time(const Parameters& par) {
   const int threads = omp_get_max_threads();
   omp_set_num_threads(1);
@@ -1339,6 +1380,8 @@ RaceRuns race_error_against_time(const Parameters& par) {
         const app::TubeRun<1> run = race_tube(par, sod, race_etas[k], how, "race");
         const auto e = sph::shock_tube_errors(run.particles, run.exact, par.t_end);
         const int n = static_cast<int>(e[0].count);
+        /// Beneath a plain run whose window holds the particles of a quoted run, to within two,
+        /// the row carries the other code's steps, time and errors.
         std::string quoted = "";
         for (const Quoted& q : other_code) {
           if (variant == 0 && q.eta == race_etas[k] && std::abs(q.in_window - n) <= 2) {
@@ -1527,6 +1570,8 @@ struct Findings {
   const Race& race;
 };
 
+/// `check_claims` goes through the claims in the order of the list above.  Claim 1 holds each
+/// row of Step 1 to its own target; its momentum check applies whatever the states.
 void check_claims(app::Chapter& chapter, const Parameters& par, const Findings& f) {
   const bool is_sod = par.is_sod();
   for (const Sod1D::Row& row : f.sod_1d.rows) {
@@ -1538,6 +1583,8 @@ void check_claims(app::Chapter& chapter, const Parameters& par, const Findings& 
     chapter.check(row.momentum_drift < 1e-12,
                   format("Sod 1D: momentum drifted by %.2e", row.momentum_drift));
   }
+  /// Claim 2 compares the first error of Step 2's scan, at \f$ h = \Delta x \f$, with the
+  /// error at the scan value nearest \f$ h = 1.2\Delta x \f$.
   // The scan value nearest h = 1.2 dx (1.2 itself at full resolution, 1.25 with --quick).
   const auto nearer_1p2 = [](double a, double b) { return std::abs(a - 1.2) < std::abs(b - 1.2); };
   const auto near_1p2 = std::min_element(f.eta.eta.begin(), f.eta.eta.end(), nearer_1p2);
@@ -1548,6 +1595,9 @@ void check_claims(app::Chapter& chapter, const Parameters& par, const Findings& 
         l1_at_one < l1_at_1p2,
         format("h = dx should beat h = 1.2 dx in 1D: L1 %.2e vs %.2e", l1_at_one, l1_at_1p2));
   }
+  /// Claims 3 to 5 read Step 3's 3D runs -- the glass start's error, momentum drift and
+  /// plateau pressure, and the lattice start's stall -- then Step 4's scatter and Step 5's
+  /// order.
   const MultiD& m = f.multi_d;
   if (is_sod) {
     chapter.check(m.l1_rho_3d < 0.03,
@@ -1572,6 +1622,8 @@ void check_claims(app::Chapter& chapter, const Parameters& par, const Findings& 
                   format("Sod 1D: the L1(rho) convergence order %.2f is below 0.6", f.order_1d));
   }
 
+  /// Claim 6 reads the step counts of Step 6's part (a) and the change the walls made in part
+  /// (b).  Last, the two key numbers go into `summary.txt`.
   const Race& r = f.race;
   if (is_sod) {
     chapter.check(r.steps_signal < r.steps_eq7,

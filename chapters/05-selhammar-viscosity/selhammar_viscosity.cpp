@@ -122,11 +122,11 @@
 #include "app/curve_reading.hpp"
 #include "app/error_figure.hpp"
 #include "app/particle_measures.hpp"
-#include "app/selhammar_viscosity/collective_kick_figure.hpp"
-#include "app/selhammar_viscosity/homologous_sphere_figures.hpp"
-#include "app/selhammar_viscosity/homologous_sphere_run.hpp"
-#include "app/selhammar_viscosity/weak_tube_figure.hpp"
-#include "app/selhammar_viscosity/weak_tube_run.hpp"
+#include "collective_kick_figure.hpp"
+#include "homologous_sphere_figures.hpp"
+#include "homologous_sphere_run.hpp"
+#include "weak_tube_figure.hpp"
+#include "weak_tube_run.hpp"
 #include "app/shock_tube_figure.hpp"
 #include "app/shock_tube_run.hpp"
 #include "app/text.hpp"
@@ -200,19 +200,6 @@ struct Switch : sph::Scene<D> {
 /// \f$ and \f$ \eta = 1 \f$; the switch between 0.1 and 1), Selhammar's \f$ \nu^2 = 10^{-4}h^2 \f$,
 /// the readings and the update of the collective term, and the resolutions.  `--quick` runs every
 /// scene at a fraction of the paper's particle numbers, for the test suite.
-///
-/// The struct also makes the terms, so that each step names a viscosity in one expression.
-/// standard() is chapter 4's \f$ \Pi_{ij} \f$ with \f$ \alpha \f$, \f$ \beta \f$ and
-/// \f$ \nu^2 \f$; restricted() is its quadratic half with the third condition of eq 13; the
-/// switch starts every particle at \f$ \alpha = 0.1 \f$, its floor, lets it rise to the
-/// standard viscosity's \f$ \alpha \f$ where the gas is compressed, and decays it back on the
-/// time \f$ \tau = h/(\ell c) \f$ with \f$ \ell = 0.1 \f$.
-/// collective() takes the neighbour number \f$ N_n \f$ as an argument, because the virtual
-/// particle of eq 16 stands for the neighbourhood of the scene at hand: 64 in Selhammar's 3D
-/// scenes, 50 in chapter 4's 3D tube, 4 and 5 in the 1D tubes.  default_schemes() tells whether
-/// the options have left the chapter's schemes as they are.  Only then are the claims about
-/// them checks that can fail the run; with other coefficients, readings or time steps the
-/// program reports them, since the text's verdicts were reached with these.
 
 struct Parameters {
   double alpha = 1.0, beta = 2.0, nu2 = 1e-4;  // Selhammar's nu = 0.01 h
@@ -225,6 +212,18 @@ struct Parameters {
   int boost_particles = 512;
   bool quick = false;
 
+  /// The struct also makes the terms, so that each step names a viscosity in one expression.
+  /// standard() is chapter 4's \f$ \Pi_{ij} \f$ with \f$ \alpha \f$, \f$ \beta \f$ and
+  /// \f$ \nu^2 \f$; restricted() is its quadratic half with the third condition of eq 13;
+  /// the switch starts every particle at \f$ \alpha = 0.1 \f$, its floor, lets it rise to the
+  /// standard viscosity's \f$ \alpha \f$ where the gas is compressed, and decays it back on
+  /// the time \f$ \tau = h/(\ell c) \f$ with \f$ \ell = 0.1 \f$.
+  /// collective() takes the neighbour number \f$ N_n \f$ as an argument, because the virtual
+  /// particle of eq 16 stands for the neighbourhood of the scene at hand: 64 in Selhammar's 3D
+  /// scenes, 50 in chapter 4's 3D tube, 4 and 5 in the 1D tubes.  default_schemes() tells
+  /// whether the options have left the chapter's schemes as they are.  Only then are the
+  /// claims about them checks that can fail the run; with other coefficients, readings or time
+  /// steps the program reports them, since the text's verdicts were reached with these.
   sph::MonaghanGingold1983 standard() const { return {alpha, beta, nu2}; }
   sph::RestrictedVonNeumannRichtmyer restricted() const { return {beta, nu2}; }
   template <int D>
@@ -336,7 +335,9 @@ void print_headline(const Parameters& par) {
 /// velocity jump against the homologous flow \f$ u \propto r \f$ (the homologous limiter):
 /// without it q would heat the self-similar compression, exactly the fault this chapter
 /// examines in SPH.  The runs themselves are app::weak_tube_reference and
-/// app::homologous_sphere_reference, which record what the steps print.
+/// app::homologous_sphere_reference, which record what the steps print; they are shown on this
+/// page with the SPH runs they referee, in the files weak_tube_run.hpp (Step 2) and
+/// homologous_sphere_run.hpp (Step 4).
 
 /// \section ch05_stiff Step 1: the collective term alone, and why its explicit kick fails
 ///
@@ -399,8 +400,9 @@ void print_headline(const Parameters& par) {
 /// neighbourhood's velocity \f$ \tilde{\mathbf v} = (-|a|/w, 0, 0) \f$ -- and applies one kick
 /// of length 1 to the velocity (1, 0, 0), either the printed explicit acceleration or the exact
 /// relaxation, through the same functions that the step calls in a run.  The figure
-/// (app::save_collective_kick_figure) draws the formulas as lines and the library's answers as
-/// markers; if a marker leaves its line, the library does not compute what this section says.
+/// (app::save_collective_kick_figure, shown after the step) draws the formulas as lines and the
+/// library's answers as markers; if a marker leaves its line, the library does not compute what
+/// this section says.
 
 double kick_factor(double eta, double mach) { return 19.2 * eta / (mach + 1 + 1.2 * eta); }
 double explicit_speed(double kdt, double ratio) { return 1 - kdt * std::sqrt(ratio); }
@@ -455,6 +457,11 @@ void step1_stiffness(const app::Chapter& chapter, const Parameters& par) {
                                    chapter.figure_path("collective_stiffness.png").string());
 }
 
+/// The drawing is the file collective_kick_figure.hpp.  It knows nothing of the collective
+/// term, only the curves it is handed -- the five functions that step1_stiffness() has just
+/// filled in -- and lays them out in the two panels described above.
+/// \show_file collective_kick_figure.hpp
+///
 /// \section ch05_readings Step 2: two readings, decided by the paper's own tests
 ///
 /// Two of the printed equations can be read two ways, and each way gives a different scheme.
@@ -603,6 +610,11 @@ std::pair<double, double> vnr_fraction_on_sphere(const Parameters& par, sph::Com
 /// kinetic energy.  The readings are judged against the standard viscosity's run, made with the
 /// same particles and the same free ends.
 ///
+/// Step 2 is the first of three steps that run the weak tube, so this is where the tube's code
+/// comes in, the file weak_tube_run.hpp: the run and the reference that every tube of the
+/// chapter goes through, and the measures that the tables of Steps 2, 3 and 6 print.
+/// \show_file weak_tube_run.hpp
+///
 /// Step 2 keeps what the checks need: the two censuses, and the kinetic energies of the
 /// standard viscosity and of the two readings.
 
@@ -627,6 +639,9 @@ Readings step2_readings(const Parameters& par) {
   std::printf("    %-22s %9.1f%% %13.1f%%\n", "as printed", 100 * r.census_printed.first,
               100 * r.census_printed.second);
 
+  /// Then the tubes, at n = 8.  Each reading is a copy of the chapter's parameters with its
+  /// switches set here; the runs without viscosity and with the standard one come first, the
+  /// yardsticks by which the readings are judged.
   sph::WeakTubeSetup setup;
   setup.cells = 8;
   setup.printed_densities = par.printed_densities;
@@ -649,6 +664,9 @@ Readings step2_readings(const Parameters& par) {
   const auto norm = run_weak_tube<Modified<3>>(
       "printed 1/(1 - w_i)", setup,
       {{}, par.restricted(), printed_norm.collective<3>(par.neighbours)}, par.settings());
+  /// The reference at the same end time, and the table.  Energy, speed and error are read off
+  /// the particles at t = 20, the error against the reference interpolated at each particle's
+  /// z; the reference's own row sums its zones (app::planar_kinetic_energy).
   const sph::LagrangianProfile ref = app::weak_tube_reference(setup, 2000);
   std::printf("  eq 16 on the weak tube at t = 20, %zu particles:\n", standard.particles.size());
   std::printf("    %-24s %10s %10s %10s %10s %8s\n", "scheme", "E_kin", "max |v|", "L1(v_z)",
@@ -687,8 +705,8 @@ Readings step2_readings(const Parameters& par) {
 /// free end at the sound speed, 0.105, meets the rarefaction from the interface after
 /// \f$ t \approx 5 \f$, and the waves it sends on reach the contact and the shock well before
 /// t = 20.  So we measure against a solution of the whole tube: the Lagrangian code of
-/// lib/sph/reference/lagrangian_1d.hpp, planar, with 4000 zones of equal mass, free at both ends.
-/// The step prints how far that solution has moved from the Riemann solution by t = 20.
+/// lib/sph/reference/lagrangian_1d.hpp, planar, with 4000 zones of equal mass, free at both
+/// ends.  The step prints how far that solution has moved from the Riemann solution by t = 20.
 ///
 /// Each of the three viscosities runs the tube; the step prints the \f$ L_1 \f$ errors of
 /// \f$ v_z \f$, P and \f$ \rho \f$ over all particles against the reference, the steps, the wall
@@ -725,6 +743,7 @@ Readings step2_readings(const Parameters& par) {
 /// measures how much of the gas the Riemann solution still describes at t = 20: the share of
 /// the mass whose density it misses by more than 1 % (app::mass_fraction_off).  That number
 /// is the reason for the reference: if it were small, the exact solution of chapter 3 would do.
+/// Both functions are in weak_tube_run.hpp, shown in Step 2.
 ///
 /// Then the three viscosities, each with app::run_weak_tube, the modified one with the census
 /// of the last section at t = 10 and 20.  The errors are taken twice, over all particles and
@@ -760,6 +779,9 @@ WeakTube step3_weak_tube(const app::Chapter& chapter, const Parameters& par) {
       "  the reference: 4000 Lagrangian zones, free ends, from z = %.2f to %.2f at t = 20;\n"
       "  the Riemann solution is more than 1 %% off its density in %.0f %% of the mass\n",
       ref.node_radius.front(), ref.node_radius.back(), 100 * result.riemann_departure);
+  /// The three runs.  Only the modified one is given something to do at the pauses:
+  /// activity_at_pauses() takes its census at t = 10 and 20, while the other two run straight
+  /// through.  Then the table, each run's errors over all particles and in the window.
   result.runs.push_back(
       app::run_weak_tube<Standard<3>>("standard", setup, {{}, par.standard()}, par.settings()));
   result.runs.push_back(app::run_weak_tube<Modified<3>>(
@@ -787,6 +809,8 @@ WeakTube step3_weak_tube(const app::Chapter& chapter, const Parameters& par) {
       "  moving particles\n",
       100 * modified.vnr_on[0], 100 * modified.vnr_on[1], 100 * modified.collective_on[0],
       100 * modified.collective_on[1]);
+  /// Last, the figures, one per viscosity, each drawn against the same reference and the same
+  /// Riemann solution, so that the three can be laid side by side panel by panel.
   const auto figure = [&](int k, const char* file, const char* title) {
     app::save_weak_tube_figure(result.runs[k], ref, riemann, 20.0,
                                chapter.figure_path(file).string(), title);
@@ -797,6 +821,10 @@ WeakTube step3_weak_tube(const app::Chapter& chapter, const Parameters& par) {
   return result;
 }
 
+/// The layout of those figures, the paper's for Figs 1-2, is the file weak_tube_figure.hpp.  It
+/// computes nothing new: it draws what the step hands it.
+/// \show_file weak_tube_figure.hpp
+///
 /// \section ch05_sphere Step 4: the homologous compression, Figs 3 and 4
 ///
 /// The test the modified viscosity was made for (sect. 5.2): a uniform sphere, R = 1, M = 1, of
@@ -870,11 +898,12 @@ WeakTube step3_weak_tube(const app::Chapter& chapter, const Parameters& par) {
 /// \subsection ch05_sphere_census Following the restricted term through the compression
 ///
 /// The census on the sphere is taken after every step of the modified run, by a probe that
-/// app::run_homologous_sphere calls (census_probe() below).  It has to be taken during the run: the
-/// census reads the neighbour lists, sound speeds and \f$ \dot\rho \f$ of the step just taken,
-/// which a record of the particles' positions and energies would not keep.  Up to t = 0.5 it counts
-/// the pairs inside the sphere.  "Inside" shrinks with the sphere: the particles within \f$ (R -
-/// 2h)(1 - 2t) \f$ of the centre of mass, the radius of Step 2's census carried along by the
+/// app::run_homologous_sphere calls (census_probe() below; the runner is shown in the next
+/// section).  It has to be taken during the run: the census reads the neighbour lists, sound
+/// speeds and \f$ \dot\rho \f$ of the step just taken, which a record of the particles'
+/// positions and energies would not keep.  Up to t = 0.5 it counts the pairs inside the sphere.
+/// "Inside" shrinks with the sphere: the particles within \f$ (R - 2h)(1 - 2t) \f$ of the
+/// centre of mass, the radius of Step 2's census carried along by the
 /// homologous flow \f$ r(t) = r_0(1 - 2t) \f$, held from t = 0.45 on, where the bounce begins and
 /// the flow is no longer homologous.  From the bounce on, at four sample times, it counts over the
 /// whole sphere, where the term is expected to act: the rebounding core meets gas that still falls
@@ -933,6 +962,16 @@ auto census_probe(SphereCensus& census) {
 /// particle measures that thin skin, not the compressed body.  The radius that holds 90 % of
 /// the mass (of the particles, which all have the same mass; of the shells' mass coordinate in
 /// the reference) measures the body, and compares like with like across SPH and the reference.
+///
+/// The runner and the reference are the file homologous_sphere_run.hpp, shown here because
+/// Step 4 is the first to use them.  Both keep a record of every step rather than a few
+/// snapshots, because what the table asks for -- the moment of the largest density, of the
+/// least kinetic energy -- is not known before the run; and the runner hands the simulation to
+/// a probe after every step, which is how census_probe() above follows the restricted term.
+/// \show_file homologous_sphere_run.hpp
+///
+/// What the step keeps: the four runs and the reference, the census of the modified run, and
+/// the thermal energies of the boost's runs at its end.
 
 struct Sphere {
   std::vector<app::SphereRun> runs;  // none, standard, modified, switch
@@ -943,6 +982,10 @@ struct Sphere {
   double boost_thermal_fine = 0;  // E_th at t = 0.6 at rest with a quarter of the Courant factor
 };
 
+/// The table, printed from the records.  The thermal energies at t = 0.2, 0.3 and 0.4 are read
+/// off each run's record of every step (app::value_at interpolates in it), the 90 % radius off
+/// the particles kept at maximum compression.  The reference's row leaves steps, wall time and
+/// drift at zero: it is not an SPH run.
 void print_sphere_table(const Sphere& result, const sph::HomologousSphereSetup& setup) {
   std::printf("  zeroth-order estimate (eq 26): rho' = %.0f, R' = %.4f\n",
               setup.zeroth_order_density(), setup.zeroth_order_radius());
@@ -973,6 +1016,9 @@ void print_sphere_table(const Sphere& result, const sph::HomologousSphereSetup& 
       "    central shell)\n");
 }
 
+/// The census as printed: inside the shrinking sphere at fixed times up to t = 0.48, stopping
+/// at the run's maximum compression; its largest value before t = 0.45, which the function
+/// returns for the checks; and over the whole sphere at the bounce's sample times.
 double print_sphere_census(const SphereCensus& census, double t_maximum) {
   std::printf(
       "  the restricted vNR term (modified) is on for this fraction of the supersonic\n"
@@ -1052,8 +1098,9 @@ void galilean_boost(Sphere& result, const Parameters& par, sph::HomologousSphere
 /// The reference runs first, because the table reads every SPH run against it: the time of
 /// its maximum compression is where Fig 4 is taken and where the runs' central densities are
 /// compared.  The figures are app::save_sphere_energy_figure and
-/// app::save_sphere_density_figure; the boost comes last, because it re-runs the modified
-/// scene in a moving frame and needs the resting run's numbers to compare with.
+/// app::save_sphere_density_figure (shown after the step); the boost comes last, because it
+/// re-runs the modified scene in a moving frame and needs the resting run's numbers to compare
+/// with.
 ///
 /// Reading the figures.  In Fig 3 each scheme has one colour and three lines: kinetic energy
 /// solid, thermal dashed, their sum dotted; the reference is the wide grey band beneath.  A
@@ -1097,6 +1144,11 @@ Sphere step4_homologous_sphere(const app::Chapter& chapter, const Parameters& pa
   return result;
 }
 
+/// The step's two figures are drawn by the file homologous_sphere_figures.hpp.  Apart from the
+/// drawing, it makes one decision that matters when reading Fig 4: which panels share the
+/// paper's scale.
+/// \show_file homologous_sphere_figures.hpp
+///
 /// \section ch05_strong Step 5: shocks -- Sod's tube, chapter 4's 3D tube, the colliding streams
 ///
 /// The modified viscosity was made for compressions that are not shocks; it must still make
@@ -1189,6 +1241,9 @@ app::TubeRun<1> sod_row(Strong& out, const std::string& name, const typename Sce
   return run;
 }
 
+/// sod_row() hands back the whole run, not only its errors, because the figure needs the
+/// particles of two of the rows: sod_tube() keeps the standard and the modified run and draws
+/// both against the exact solution, which is the same for every row.
 void sod_tube(Strong& out, const app::Chapter& chapter, const Parameters& par) {
   const int resolution = par.quick ? 800 : 3200;
   std::printf(
@@ -1284,6 +1339,9 @@ void streams_row(Strong& out, const std::string& name, const typename Scene::Ter
   out.inversions[name] = static_cast<long>(run.inversions.all);
 }
 
+/// The fourth and fifth rows are variants of the chapter's parameters, made here: a copy with
+/// the explicit kick switched on, and a restricted term whose \f$ \beta \f$ is set to 0, which
+/// leaves the collective term to act alone.
 void colliding_streams(Strong& out, const Parameters& par) {
   std::printf(
       "  colliding streams at Mach 10, t = 0.4 (chapter 3): pairs that have passed each other\n");
@@ -1362,6 +1420,8 @@ sph::RunRecord tube_record(const std::string& name, const app::WeakTubeRun& run,
           {{"L1(v)", e.v}, {"L1(P)", e.pressure}, {"L1(rho)", e.density}}};
 }
 
+/// One reference serves every resolution, computed once before the runs: it depends on the
+/// two states and the tube's ends, not on the lattice the SPH particles start on.
 void weak_tube_cost(const app::Chapter& chapter, const Parameters& par, const WeakTube& tube) {
   sph::WeakTubeSetup setup;
   setup.printed_densities = par.printed_densities;

@@ -27,14 +27,14 @@
 /// hydrodynamic forces, and a scene that names none -- every scene of chapters 1-5 -- contains
 /// no gravity code (lib/sph/gravity/none.hpp).  Nothing else in the step changes.
 ///
-/// What is new in lib/app is the chapter's measuring and drawing, kept out of the program so
-/// that the program holds the steps: one evaluation of a gravity module on its own
-/// (lib/app/self_gravity/gravity_alone.hpp), one run of the Evrard collapse with its energy history
-/// (lib/app/self_gravity/evrard_run.hpp), the 1D references
-/// (lib/app/self_gravity/evrard_reference.hpp), radial profiles and the shock on them
-/// (lib/app/self_gravity/radial_profile.hpp), and the figures
-/// (lib/app/self_gravity/tree_figures.hpp, lib/app/self_gravity/free_fall_figure.hpp,
-/// lib/app/self_gravity/evrard_figures.hpp).
+/// The chapter's measuring and drawing are kept in helper files of its own folder, so that the
+/// program holds the steps; each file is shown on this page where a step first uses it: one
+/// evaluation of a gravity module on its own (`gravity_alone.hpp`, Step 1), the tree's accuracy
+/// rows and their figures (`tree_figures.hpp`, Step 2), the free-fall figure
+/// (`free_fall_figure.hpp`, Step 3), one run of the Evrard collapse with its energy history
+/// (`evrard_run.hpp`), the 1D references (`evrard_reference.hpp`), the gas a collapse throws off
+/// (`unbound_gas.hpp`) and the collapse's figures (`evrard_figures.hpp`), all in Step 4, and
+/// radial profiles and the shock on them (`radial_profile.hpp`, Step 5).
 ///
 /// The program has seven steps, each a function below under its own heading, and `main` at the
 /// end calls them in order:
@@ -103,14 +103,14 @@
 #include "app/curve_reading.hpp"
 #include "app/error_figure.hpp"
 #include "app/particle_measures.hpp"
-#include "app/self_gravity/evrard_figures.hpp"
-#include "app/self_gravity/evrard_reference.hpp"
-#include "app/self_gravity/evrard_run.hpp"
-#include "app/self_gravity/free_fall_figure.hpp"
-#include "app/self_gravity/gravity_alone.hpp"
-#include "app/self_gravity/radial_profile.hpp"
-#include "app/self_gravity/tree_figures.hpp"
-#include "app/self_gravity/unbound_gas.hpp"
+#include "evrard_figures.hpp"
+#include "evrard_reference.hpp"
+#include "evrard_run.hpp"
+#include "free_fall_figure.hpp"
+#include "gravity_alone.hpp"
+#include "radial_profile.hpp"
+#include "tree_figures.hpp"
+#include "unbound_gas.hpp"
 #include "app/text.hpp"
 #include "plot/figure.hpp"
 #include "sph/gravity/direct.hpp"
@@ -216,6 +216,8 @@ struct Parameters {
   bool one_step = false;  // Steps 4-6 with one step for all (and Step 4's comparisons)
   bool quick = false;
 
+  /// The library's objects, built from these numbers; last, `default_schemes()`, the test that
+  /// decides whether Selhammar's claims are checked.
   sph::MonaghanGingold1983 standard() const { return {alpha, beta, nu2}; }
   sph::RestrictedVonNeumannRichtmyer restricted() const { return {beta, nu2}; }
   sph::SelhammarCollective<3> collective() const { return {eta, neighbours}; }
@@ -347,6 +349,14 @@ sph::Particles<3> with_smoothing_lengths(sph::Particles<3> p, const Parameters& 
 /// length, W, and W relative to its exact value, for both spheres, and the net force.  The
 /// last line fits the exponent of the uniform sphere's difference between the smallest and
 /// the largest N.
+///
+/// The file gravity_alone.hpp holds `app::gravity_alone`, and the timing that Step 2 uses,
+/// `app::median_seconds`:
+///
+/// \show_file gravity_alone.hpp
+///
+/// Back in the program, `DirectCheck` keeps for each N the two spheres' relative differences
+/// and the net force, for the checks at the end.
 
 struct DirectCheck {
   std::vector<int> n;
@@ -370,6 +380,9 @@ DirectCheck step1_direct_summation(const Parameters& par) {
     evrard_setup.particles = n;
     const sph::Particles<3> evrard =
         with_smoothing_lengths(sph::make_evrard_sphere(evrard_setup), par);
+    /// With the smoothing lengths of a first step on both spheres, one evaluation of each
+    /// gives its W; divided by the exact \f$ -\tfrac35 \f$ and \f$ -\tfrac23 \f$, it gives the
+    /// relative differences that the table prints and the checks read.
     const app::GravityField u = app::gravity_alone(sph::DirectGravity{}, uniform);
     const app::GravityField e = app::gravity_alone(sph::DirectGravity{}, evrard);
     const auto mean_h = [](const sph::Particles<3>& p) {
@@ -483,6 +496,16 @@ DirectCheck step1_direct_summation(const Parameters& par) {
 /// (`sph::random_ball`, the same seed), whose centre holds many particles with small net forces.
 /// The step measures the quadrupole tree there at \f$ \theta \f$ = 0.3 and 0.5 and the
 /// relative criterion at its default \f$ \alpha \f$, and the chapter's own tree (a check).
+///
+/// **The rows.**  One measurement is one row of `app::TreeAccuracy`: the error quantiles, the
+/// potential energy's error, the relative time, the net force and the interactions.  The type
+/// sits in tree_figures.hpp with the two figures drawn from such rows, `tree_accuracy.png` and
+/// `tree_cost.png`:
+///
+/// \show_file tree_figures.hpp
+///
+/// The step returns its rows, the chapter's own tree among them, and the timings of the cost
+/// against N (below) in a `TreeStudy`.
 
 struct TreeStudy {
   std::vector<app::TreeAccuracy> rows;
@@ -505,6 +528,9 @@ app::TreeAccuracy chapters_tree(const std::vector<app::TreeAccuracy>& rows, cons
   return row != rows.end() ? *row : measure();
 }
 
+/// `measure_tree` is the measurement described above.  With the relative criterion it first
+/// evaluates once, untimed, by the angle: the criterion needs each particle's acceleration from
+/// an earlier evaluation (in a run, the last step's).
 app::TreeAccuracy measure_tree(const sph::Particles<3>& p, const app::GravityField& exact,
                                double theta, bool quadrupole, double direct_seconds,
                                double alpha = 0) {
@@ -520,6 +546,8 @@ app::TreeAccuracy measure_tree(const sph::Particles<3>& p, const app::GravityFie
   // (the median of seven: one evaluation takes about 10 ms, where a shared machine's noise is
   // tens of per cent; with three, a recording once had the monopoles dearer than the quadrupoles)
   const double seconds = app::median_seconds(7, [&] { f = app::gravity_alone(tree, p); });
+  /// The errors, particle by particle, against direct summation's accelerations, and the
+  /// quantiles the table prints; the interactions are what the tree counted in its last walk.
   std::vector<double> error(p.size());
   for (std::size_t i = 0; i < p.size(); ++i)
     error[i] = (f.a[i] - exact.a[i]).norm() / exact.a[i].norm();
@@ -538,6 +566,9 @@ app::TreeAccuracy measure_tree(const sph::Particles<3>& p, const app::GravityFie
   return row;
 }
 
+/// **The step.**  It builds the Evrard sphere of Figs 5-7 with the smoothing lengths of its
+/// first step and takes direct summation on it as the exact answer, timed as the median of three
+/// evaluations (one with `--quick`): every tree's time is relative to that one.
 TreeStudy step2_tree(const app::Chapter& chapter, const Parameters& par) {
   std::printf("\nStep 2: the tree against direct summation\n");
   TreeStudy study;
@@ -560,6 +591,10 @@ TreeStudy step2_tree(const app::Chapter& chapter, const Parameters& par) {
                 parameter.c_str(), r.p50, r.p90, r.p99, r.max, r.potential, r.relative_time,
                 r.interactions);
   };
+  /// The table: both orders at eight opening angles, then the relative criterion (quadrupoles)
+  /// at six values of \f$ \alpha \f$, each with the chapter's angle for its first evaluation.
+  /// The chapter's own tree is taken from these rows, or measured apart if its options are not
+  /// among them.
   for (bool quadrupole : {false, true}) {
     for (double theta : {0.2, 0.3, 0.4, 0.5, 0.6, 0.7, 0.8, 1.0}) {
       study.rows.push_back(measure_tree(p, exact, theta, quadrupole, direct));
@@ -587,6 +622,9 @@ TreeStudy step2_tree(const app::Chapter& chapter, const Parameters& par) {
                   .c_str());
   std::printf("  net force |sum m a| / sum m|a| = %.1e (direct summation: round-off)\n",
               study.momentum);
+  /// Then the hard case, where the pulls cancel: the random uniform sphere of the tests, with
+  /// rows for the angles 0.3 and 0.5 and for the relative criterion at its default.  These rows
+  /// enter the table and the checks, not the figure.
   // Where a tree is weakest: the pulls cancel at the centre of a uniform sphere.
   const sph::Particles<3> ball = sph::random_ball(par.quick ? 2000 : 10000, 11, false);
   app::GravityField ball_exact;
@@ -691,6 +729,8 @@ void step2_cost_against_n(const app::Chapter& chapter, const Parameters& par, Tr
   }
   std::printf("  cost of one evaluation:\n    %7s %10s %10s %9s %12s\n", "N", "direct s", "tree s",
               "ratio", "tree us/part");
+  /// Each N gets a sphere of its own with its first step's smoothing lengths, so that the tree
+  /// sums the near field that a run at that N would.
   for (int n : counts) {
     sph::EvrardSetup s;
     s.particles = n;
@@ -771,6 +811,14 @@ struct FreeFallResult {
   int particles = 0;
 };
 
+/// The step keeps its record in an `app::FreeFallHistory` -- the times in units of
+/// \f$ t_\mathrm{ff} \f$, the analytic \f$ r/r_0 \f$ and the three shells' -- and draws it with
+/// `app::save_free_fall_figure`, both in free_fall_figure.hpp:
+///
+/// \show_file free_fall_figure.hpp
+///
+/// The step: the cold sphere on the tree at the chapter's opening angle, each particle carrying
+/// the softening length as its h, with a fixed step of a thousandth of \f$ t_\mathrm{ff} \f$.
 FreeFallResult step3_free_fall(const app::Chapter& chapter, const Parameters& par) {
   std::printf("\nStep 3: the free fall of a cold uniform sphere (gravity alone)\n");
   sph::HomologousSphereSetup setup;
@@ -784,6 +832,9 @@ FreeFallResult step3_free_fall(const app::Chapter& chapter, const Parameters& pa
   sph::TreeGravity gravity = par.tree();
   gravity.fixed_softening = 0;  // (the particles carry their softening length as h)
   sph::Simulation<FreeFall> sim(p, sph::Box<3>::open(), gravity, settings);
+  /// A shell is found by rank at every record, not by following its particles: the radius that
+  /// holds a given fraction of the mass is what the analytic collapse predicts, whichever
+  /// particles happen to lie there.
   const double fractions[] = {0.1, 0.5, 0.75};
   double r0[3];
   for (int k = 0; k < 3; ++k) r0[k] = app::radius_holding(p, fractions[k], Vec3::Zero());
@@ -805,6 +856,8 @@ FreeFallResult step3_free_fall(const app::Chapter& chapter, const Parameters& pa
   record(sim);
   sim.run_until(0.97 * t_ff, record);
   result.momentum = app::momentum_drift(sim.particles(), Vec3::Zero());
+  /// The table reads the shells at five moments (`app::value_at`: the first record at or after
+  /// each); the figure draws every record.
   std::printf("    %8s %9s %9s %9s %9s\n", "t/t_ff", "analytic", "10 %", "50 %", "75 %");
   for (double when : {0.3, 0.6, 0.8, 0.9, 0.95}) {
     std::printf("    %8.2f %9.4f %9.4f %9.4f %9.4f\n", when, app::value_at(t, exact, when),
@@ -881,24 +934,23 @@ FreeFallResult step3_free_fall(const app::Chapter& chapter, const Parameters& pa
 /// time that the particle's own limits allow -- the criteria of eq 7, for it alone -- kept within
 /// four times its neighbours' steps by the limiter of Saitoh & Makino (2009).  At each step only
 /// the particles whose step ends are evaluated: their neighbours, density, forces and gravity; the
-/// others drift and carry predicted velocities.  Selhammar (1997) integrates with one step for
-/// all, the least any particle needs.  We do not by default, because of what it costs: in the
-/// collapse the particles' own steps span a factor of ten and more, the centre's the shortest, and
-/// one step for all pays the centre's step everywhere.  Counted at every step of the runs with one
-/// step for all, power-of-two levels would make 1.9-2.4 times fewer updates over the whole run
-/// (Step 7's last column, with `--one-step`): on average a particle could skip every other step
-/// that the centre needs.  The modified viscosity's collapse takes 1.7 times as long with one step
-/// for all, and only with individual steps does the whole chapter run in three minutes.
-/// `--one-step` runs Steps 4-6 as the paper does, and Step 4 then runs the standard and the
-/// modified viscosity once more with individual steps and compares: their energy extremes must
-/// agree to within the integration's error, and they do (\ref ch06_findings "the findings" give
-/// the numbers).  A run with individual steps records its energies only where all its particles
-/// are at the same time, at the end of a block, and a block spans the longest step any particle
-/// allows -- up to 0.19 late in the collapse, too few records to draw the curves or read their
-/// peaks.  So `app::run_evrard` ends a block at least every 0.01 (about 300 records; 9 % more
-/// particle updates in a development run of the standard viscosity).  The peaks are then read on a
-/// grid of 0.01, which can lower a peak by
-/// \f$ 2\times10^{-4} \f$ to \f$ 10^{-3} \f$ of itself: the size of the two integrations'
+/// others drift and carry predicted velocities.  Selhammar (1997) integrates with one step for all,
+/// the least any particle needs.  We do not by default, because of what it costs: in the collapse
+/// the particles' own steps span a factor of ten and more, the centre's the shortest, and one step
+/// for all pays the centre's step everywhere.  Counted at every step of the runs with one step for
+/// all, power-of-two levels would make 1.9-2.4 times fewer updates over the whole run (Step 7's
+/// last column, with `--one-step`): on average a particle could skip every other step that the
+/// centre needs.  The modified viscosity's collapse takes 1.7 times as long with one step for all,
+/// and only with individual steps does the whole chapter run in three minutes.  `--one-step` runs
+/// Steps 4-6 as the paper does, and Step 4 then runs the standard and the modified viscosity once
+/// more with individual steps and compares: their energy extremes must agree to within the
+/// integration's error, and they do (\ref ch06_findings "the findings" give the numbers).  A run
+/// with individual steps records its energies only where all its particles are at the same time, at
+/// the end of a block, and a block spans the longest step any particle allows -- up to 0.19 late in
+/// the collapse, too few records to draw the curves or read their peaks.  So `app::run_evrard` ends
+/// a block at least every 0.01 (about 300 records; 9 % more particle updates in a development run
+/// of the standard viscosity).  The peaks are then read on a grid of 0.01, which can lower a peak
+/// by \f$ 2\times10^{-4} \f$ to \f$ 10^{-3} \f$ of itself: the size of the two integrations'
 /// difference in the standard viscosity's extremes.
 ///
 /// **Why a fixed softening of 0.01** (the run that `--one-step` adds).  A fixed length makes the
@@ -913,6 +965,20 @@ FreeFallResult step3_free_fall(const app::Chapter& chapter, const Parameters& pa
 /// It is run with one step for all: individual time steps do not conserve energy as that leapfrog
 /// does, and their own error would hide what the fixed length is meant to show (\ref ch06_findings
 /// "the findings").
+///
+/// **The machinery of a run.**  `app::run_evrard` and the `app::EvrardRun` it returns are in
+/// evrard_run.hpp, with `app::extremes`, which reads the peaks of an energy history for the
+/// tables and the checks:
+///
+/// \show_file evrard_run.hpp
+///
+/// `app::load_evrard_reference`, with the `app::EvrardReference` it fills, is in
+/// evrard_reference.hpp; our own Lagrangian run is started there:
+///
+/// \show_file evrard_reference.hpp
+///
+/// `Collapse` holds what Step 4 made, for Steps 5-7 and the checks: the three runs, the
+/// references, and, with `--one-step`, the three further runs.
 
 struct Collapse {
   std::vector<app::EvrardRun> runs;  // standard, modified, switch
@@ -989,6 +1055,12 @@ app::EvrardRun run_viscosity(int k, bool own_steps, const std::string& name, con
 /// t = 0.875 (standard and switch 0.870, modified 0.920), but the thermal energy does not: the
 /// standard viscosity and the switch reach their largest thermal energy at t = 1.110 and 1.100,
 /// after the reference's 1.065, and the modified viscosity at 1.040, before it.
+///
+/// `app::unbound_gas`, for the particles and for our 1D code's shells, is in unbound_gas.hpp:
+///
+/// \show_file unbound_gas.hpp
+///
+/// Back in the program, `print_energy_table` prints the four tables described above.
 
 void print_energy_table(const Collapse& c, const Parameters& par) {
   const app::EvrardReference& ref = c.reference;
@@ -1007,6 +1079,8 @@ void print_energy_table(const Collapse& c, const Parameters& par) {
     if (steps > 0) std::printf(" %6ld %6.1f %8.1e %8.1e", steps, seconds, de, drift);
     std::printf("\n");
   };
+  /// The two 1D calculations first, without the cost columns, then every SPH run; a run that
+  /// the simulation stopped says why under its row.
   row("4000-shell reference", r, 0, 0, 0, 0);
   row("ours, 1D, " + std::to_string(par.quick ? 500 : 2000) + " shells", own, 0, 0, 0, 0);
   const std::vector<const app::EvrardRun*> runs = c.all();
@@ -1018,6 +1092,8 @@ void print_energy_table(const Collapse& c, const Parameters& par) {
         run->momentum_drift);
     if (!run->stopped.empty()) std::printf("      stopped: %s\n", run->stopped.c_str());
   }
+  /// The second table scans each run's records for the largest change of its total energy: a
+  /// loss at the bounce that is later won back does not show at the end.
   // The largest change of the total energy on the way, not only at the end.
   std::printf("  the total energy's largest change on the way:\n");
   std::printf("    %-21s %9s %7s\n", "", "|dE/E|", "at t");
@@ -1029,6 +1105,8 @@ void print_energy_table(const Collapse& c, const Parameters& par) {
     }
     std::printf("    %-21s %9.2e %7.3f\n", name(run).c_str(), largest, t_largest);
   }
+  /// The third takes each run's particles at the end, and the shells of our 1D code, the only
+  /// reference with a profile at that time.
   // Where the kinetic energy sits at the end: the gas no longer bound, and the drift.
   std::printf(
       "  at t = %.1f: the kinetic energy, that of the centre of mass's motion, and the gas\n"
@@ -1042,6 +1120,9 @@ void print_energy_table(const Collapse& c, const Parameters& par) {
   unbound_row("ours, 1D", app::unbound_gas(ref.own_end, ref.own_zone_mass));
   for (const app::EvrardRun* run : {&c.runs[0], &c.runs[1], &c.runs[2]})
     unbound_row(run->name, app::unbound_gas(run->at_end));
+  /// The fourth, with `--one-step` only, divides the updates and the wall time of each run with
+  /// one step for all by those of the same viscosity with individual steps, both made in this
+  /// sitting.
   if (c.own_steps.empty()) return;
   std::printf("  individual time steps against one step for all:\n");
   std::printf("    %-10s %16s %12s %12s\n", "", "particle updates", "fewer by", "faster by");
@@ -1052,6 +1133,9 @@ void print_energy_table(const Collapse& c, const Parameters& par) {
   }
 }
 
+/// **The step.**  It reads the references, runs the three viscosities on the same sphere with
+/// the same tree -- and with `--one-step` the fixed softening and the two runs with individual
+/// steps -- then prints the tables and draws Fig 5.
 Collapse step4_energies(const app::Chapter& chapter, const Parameters& par,
                         const std::filesystem::path& reference_dir) {
   std::printf("\nStep 4: the Evrard collapse -- energies (Fig 5)\n");
@@ -1085,6 +1169,14 @@ Collapse step4_energies(const app::Chapter& chapter, const Parameters& par,
   return c;
 }
 
+/// Fig 5 is drawn by `app::save_evrard_energy_figure`: a panel of energies for each viscosity
+/// over the reference's, and a fourth with the change of the total energy.  It sits in
+/// evrard_figures.hpp with the profile figure of Step 5, which takes each particle's radius,
+/// radial velocity, density and pressure from `app::radial_profile` (radial_profile.hpp, shown
+/// in Step 5):
+///
+/// \show_file evrard_figures.hpp
+///
 /// \section ch06_profiles Step 5: the profiles at t = 0.8 (Figs 6-7)
 ///
 /// At t = 0.8 the shock has formed and stands near r = 0.14; inside it lies the hot, dense,
@@ -1119,6 +1211,13 @@ Collapse step4_energies(const app::Chapter& chapter, const Parameters& par,
 /// errors are `app::radial_profile`, `app::find_shock` and `app::profile_errors`, which do what
 /// the paragraphs above define; the step prints, per viscosity, the shock's position and width,
 /// the two errors and the wall time to t = 0.8.
+///
+/// Those three functions, with `app::binned_reference`, are in the file radial_profile.hpp:
+///
+/// \show_file radial_profile.hpp
+///
+/// Back in the program, `Profiles` keeps the shocks and errors the step measures, for the
+/// checks and the summary.
 
 struct Profiles {
   app::Shock reference, reference_binned;  // on the reference's cells, and on the particles' bins
@@ -1149,6 +1248,9 @@ double own_code_against_finite_volume(const app::EvrardReference& ref, double sh
   return sum / weight;
 }
 
+/// **The step.**  The reference's shock is found twice, on its own cells and through the
+/// particles' bins, and the two 1D codes are compared; then each viscosity's particles at
+/// t = 0.8 give a profile about their centre of mass, its shock and its errors.
 Profiles step5_profiles(const app::Chapter& chapter, const Collapse& c) {
   std::printf("\nStep 5: the profiles at t = 0.8 (Figs 6-7)\n");
   Profiles result;
@@ -1175,6 +1277,8 @@ Profiles step5_profiles(const app::Chapter& chapter, const Collapse& c) {
                 result.shocks.back().position, result.shocks.back().width,
                 result.errors.back().log_rho, result.errors.back().v, run.seconds_08);
   }
+  /// The figures draw every particle, not the bins: the scatter behind the modified
+  /// viscosity's shock, which the bins average away, is part of what Figs 6-7 show.
   app::save_evrard_profile_figure(
       chapter.figure_path("fig6_standard.png").string(), c.runs[0], ref,
       "Evrard collapse at t = 0.8, standard viscosity (Selhammar Fig 6)", c.softening,
@@ -1573,8 +1677,9 @@ Extreme step7_extreme(const Parameters& par, const Collapse& c) {
 /// \f$ 6.9\times10^{-3} \f$.  With softening h that gain offsets part of the softening's loss:
 /// one step for all loses \f$ 8.8\times10^{-3} \f$ by t = 3 in the standard run, and
 /// \f$ 8.8\times10^{-3} - 3.2\times10^{-3} \f$ is the \f$ 5.6\times10^{-3} \f$ that the default
-/// run loses (the switch: 9.3 - 4.4 against 5.0, in units of \f$ 10^{-3} \f$; the modified
-/// viscosity, 14 - 6.9 against 8.2, adds less simply, its collapse being another with each
+/// run loses (the switch: \f$ 9.3\times10^{-3} - 4.4\times10^{-3} \f$ against
+/// \f$ 5.0\times10^{-3} \f$; the modified viscosity, \f$ 1.4\times10^{-2} - 6.9\times10^{-3} \f$
+/// against \f$ 8.2\times10^{-3} \f$, adds less simply, its collapse being another with each
 /// integration).  Where the error comes from: the leapfrog conserves energy to its own small
 /// error because it is symmetric in time -- a kick, a drift, a kick, each particle's forces taken
 /// at the same moment as everyone else's.  With individual steps a particle on a short step is
@@ -1586,6 +1691,7 @@ Extreme step7_extreme(const Parameters& par, const Collapse& c) {
 /// the tree's asymmetry dominates it either way.)  This is what GADGET-2 and its successors accept
 /// for their speed; a course that wants to see the softening's cost alone runs `--one-step`, or
 /// `--one-step --softening 0.01` for the fixed softening in all three viscosities.
+///
 
 /// **Where the late kinetic energy sits.**  After the bounce the modified run keeps a kinetic
 /// energy near 0.4 to t = 3 (Fig 5 b), twice the 0.20 of our 1D code.  Step 4's third table says
@@ -1667,8 +1773,8 @@ Extreme step7_extreme(const Parameters& par, const Collapse& c) {
 /// viscosity's centre spans more levels.  The target for the 8192-particle collapse, 60 s, is
 /// **met** by the standard viscosity and the switch, with either integration; the modified
 /// viscosity misses it both ways.  The whole chapter takes 2.6 minutes in the recorded run, against
-/// a target of three minutes: **met**, with individual time steps (with `--one-step`, 5.7 minutes,
-/// the modified viscosity's run alone taking nearly two of them).  The benchmark
+/// a target of three minutes: **met**, with individual time steps (with `--one-step` not: Step 4
+/// alone takes more than five minutes, the modified viscosity's run nearly two).  The benchmark
 /// (`build/bench/bench --only evrard`, three runs in one sitting on the machine of `output.txt`)
 /// times the step at t = 0.8 with 22000 particles at 3.2-3.4 microseconds a particle (median 3.35),
 /// of which the tree is 1.7, and at 3.0-3.1 (tree 1.4) with the relative criterion, whose forces
@@ -1685,21 +1791,21 @@ Extreme step7_extreme(const Parameters& par, const Collapse& c) {
 /// SIMD registers (the design page says which compiler flag allows it), about 1.4 times faster than
 /// one pair at a time; the neighbour search bounds how far a particle's neighbourhood has moved on
 /// cells about as large as its own reach, not the largest one in the sphere, which in the collapsed
-/// centre saves 39 % of the searches from t = 0.8 to 1.2; and the particles of small h search on
-/// grids of finer cells than the rest (the design page): after the bounce, when the gas thrown out
-/// spreads the grid over a box a hundred times the core's size, a search near the centre had
-/// scanned 40 particles for each one it kept, and the grid search was 11 % of the modified run's
-/// step at t = 3; with the finer grids, 3 %.  Still a fifth of the particles search again every
-/// step at t = 0.8 (the shock tube: 4 %), and the tree sums some 3000 interactions a particle --
-/// half of them single particles of nearby leaves, too near a group, or within its softening range,
-/// to be summed as multipoles.  The leaves hold up to 16 particles and the groups up to 32, where
-/// they were 12 and 16: on processors with 16 floats to a SIMD register single particles are cheap,
-/// and larger groups walk the tree fewer times (the tree 2-9 % faster in the collapse; the design
-/// page).  (Both changes moved the modified run's numbers with one step for all, which its
-/// collective term amplifies, as Step 4's checks say: the finer grids find the same candidates in
-/// another order, and its largest thermal energy moved by 0.9 %, from 2.382 to 2.360; the larger
-/// leaves accept other nodes, changing every force at the tree's error, and it moved by 0.7 %, to
-/// 2.376.  The standard viscosity's extremes printed the same to four digits.)
+/// centre saved 39 % of the searches from t = 0.8 to 1.2 in a development run; and the particles of
+/// small h search on grids of finer cells than the rest (the design page): after the bounce, when
+/// the gas thrown out spreads the grid over a box a hundred times the core's size, a search near
+/// the centre had scanned 40 particles for each one it kept, and the grid search was 11 % of the
+/// modified run's step at t = 3; with the finer grids, 3 %.  Still a fifth of the particles search
+/// again every step at t = 0.8 (the shock tube: 4 %), and the tree sums some 3000 interactions a
+/// particle -- half of them single particles of nearby leaves, too near a group, or within its
+/// softening range, to be summed as multipoles.  The leaves hold up to 16 particles and the groups
+/// up to 32, where they were 12 and 16: on processors with 16 floats to a SIMD register single
+/// particles are cheap, and larger groups walk the tree fewer times (the tree 2-9 % faster in the
+/// collapse; the design page).  (Both changes moved the modified run's numbers with one step for
+/// all, which its collective term amplifies, as Step 4's checks say: the finer grids find the same
+/// candidates in another order, and its largest thermal energy moved by 0.9 %, from 2.382 to 2.360;
+/// the larger leaves accept other nodes, changing every force at the tree's error, and it moved by
+/// 0.7 %, to 2.376.  The standard viscosity's extremes printed the same to four digits.)
 
 /// \section ch06_try What to try
 ///
@@ -1795,8 +1901,8 @@ Extreme step7_extreme(const Parameters& par, const Collapse& c) {
 ///  - with `--one-step`, individual time steps: each of the two runs with its own steps has the
 ///    extremes of the run with one step for all -- largest kinetic and thermal energy, deepest W --
 ///    within 5 %, with fewer particle updates (not with `--quick`: at 1024 particles the steps span
-///    too few levels, and the standard viscosity's run with individual steps makes about 1.16 times
-///    as many updates as with one step for all).  The bound is wider than the standard run needs
+///    too few levels, and the standard viscosity's run with individual steps makes more updates
+///    than with one step for all).  The bound is wider than the standard run needs
 ///    (0.054 % in the recorded `--one-step` run): the modified viscosity's collective term
 ///    amplifies any difference (1.5 %) -- a change of round-off alone moved its largest thermal
 ///    energy by 0.85 % in an earlier recorded run, a change in the order of its sums by 0.9 %, the
@@ -1813,6 +1919,11 @@ Extreme step7_extreme(const Parameters& par, const Collapse& c) {
 ///
 /// The summary's `error` line, which the table of all chapters shows, is the three viscosities'
 /// \f$ L_1(\log_{10}\rho) \f$ at t = 0.8.
+///
+/// `Findings` gathers the seven steps' results for `check_claims`, which turns each item of the
+/// list above into one `chapter.claim`: its condition, the line the summary prints, and whether
+/// it is checked whatever the options (a last argument `true`) or only with the chapter's own
+/// schemes.
 
 struct Findings {
   const DirectCheck& direct;
@@ -1841,6 +1952,9 @@ void check_claims(app::Chapter& chapter, const Parameters& par, const Findings& 
                     std::abs(f.direct.uniform[last]) < 0.02 &&
                     *std::max_element(f.direct.net_force.begin(), f.direct.net_force.end()) < 1e-12,
                 text, true);
+  /// The tree's bounds are the targets of Step 2.  They are claims about the default tree, so
+  /// they are checked only with its opening angle, order and criterion; its net force, a matter
+  /// of conservation, is checked always.
   // Step 2
   const app::TreeAccuracy& d = f.tree.at_default;
   std::snprintf(text, sizeof text, "tree at %s: 99th percentile %.1e, maximum %.1e",
@@ -1850,6 +1964,8 @@ void check_claims(app::Chapter& chapter, const Parameters& par, const Findings& 
   chapter.claim(
       d.p99 < 3e-3 && d.max < 7e-3, text,
       par.theta == sph::TreeGravity{}.opening_angle && !par.monopole && par.relative == 0);
+  /// The relative criterion must meet the same targets with fewer interactions than the angle:
+  /// otherwise its dearer test buys nothing.
   // (the relative criterion at its default alpha against the geometric one at its default theta)
   // (both are rows of the table when theta is one of its angles; with another --theta the
   // comparison is not made)
@@ -1872,6 +1988,9 @@ void check_claims(app::Chapter& chapter, const Parameters& par, const Findings& 
                       relative.interactions < geometric.interactions,
                   text, par.theta == sph::TreeGravity{}.opening_angle && !par.monopole);
   }
+  /// On the random uniform sphere the maximum has a looser bound: its worst particle sits at
+  /// the centre, where the pulls cancel and a small error in a small force is a large relative
+  /// one.
   const app::TreeAccuracy& u = f.tree.uniform_default;
   std::snprintf(text, sizeof text,
                 "the same tree on the random uniform sphere: 99th percentile %.1e, maximum %.1e",
@@ -1886,6 +2005,8 @@ void check_claims(app::Chapter& chapter, const Parameters& par, const Findings& 
                 f.free_fall.worst);
   // (1024 particles in --quick: the shells are a few lattice layers thick, 3e-2)
   chapter.claim(f.free_fall.worst < (par.quick ? 3e-2 : 1e-2), text, true);
+  /// Selhammar's two claims take no last argument: they are evidence about his schemes only
+  /// with the chapter's coefficients (\ref ch06_params "the parameters").
   // Step 4-5
   const auto& runs = f.collapse.runs;
   const app::Extremes s = app::extremes(runs[0]), m = app::extremes(runs[1]);
@@ -1916,6 +2037,8 @@ void check_claims(app::Chapter& chapter, const Parameters& par, const Findings& 
     // power-of-two rounding and the blocks that end every 0.01 cost more than they save)
     chapter.claim(worst < 0.05 && (par.quick || own.updates < one.updates), text, true);
   }
+  /// The fixed softening must change the energy by less than a fifth of what softening with h
+  /// does: only then is the softening, not the integration, what costs the energy.
   if (const auto& fixed = f.collapse.fixed) {
     std::snprintf(text, sizeof text,
                   "fixed softening conserves energy: |dE/E| %.1e at t = %.1f (softening h: %.1e)",

@@ -31,8 +31,8 @@
 ///    (lib/sph/derivatives/brookshaw_1985.hpp), which stands for \f$ -\nabla\times\nabla\times
 ///    \mathbf v \f$ only where \f$ \nabla\cdot\mathbf v = 0 \f$;
 ///  - **Watkins et al. (1996)**: eqs 4-6 applied twice
-///    (lib/sph/derivatives/watkins_1996_two_pass.hpp), and -- to isolate their one change -- the
-/// same two passes with the standard weights.
+///    (lib/sph/derivatives/watkins_1996_two_pass.hpp), and -- to isolate their one change --
+///    the same two passes with the standard weights.
 ///
 /// Our reading notes on the equations used here: \ref papers_watkins_eq2 "eq 2" (the viscous
 /// force), \ref papers_watkins_eq4 "eqs 4-6" (the operators), \ref papers_watkins_eq7
@@ -74,8 +74,8 @@
 /// error up, and Watkins passes it.  Details in \ref ch07_findings "the findings".
 
 #include "app/chapter.hpp"
-#include "app/second_derivatives/second_derivative_figures.hpp"
-#include "app/second_derivatives/second_derivative_tests.hpp"
+#include "second_derivative_figures.hpp"
+#include "second_derivative_tests.hpp"
 #include "app/text.hpp"
 #include "sph/setups/initial_conditions.hpp"
 #include "sph/setups/watkins_static.hpp"
@@ -132,10 +132,9 @@ struct Parameters {
 ///
 /// The four live behind one name, `Method`, and one call, `apply(method, operator, set, v)`.
 /// That dispatch, the frozen set with its densities (`StaticSet`), the scores below and the
-/// tables and figures of this chapter are kept in
-/// lib/app/second_derivatives/second_derivative_tests.hpp and
-/// lib/app/second_derivatives/second_derivative_figures.hpp, so that the steps below hold only the
-/// experiments.
+/// tables of this chapter are in the file `second_derivative_tests.hpp`, shown at the end of
+/// this section; its figures are in `second_derivative_figures.hpp`, shown in Step 3, where the
+/// first of them is drawn.  The steps themselves hold only the experiments.
 ///
 /// \subsection ch07_fields The fields, and their exact second derivatives
 ///
@@ -168,6 +167,7 @@ struct Parameters {
 /// error mixes the two (and the y and z components, which should vanish); that is why the
 /// paper's sentences about accuracy and about smoothing are checked against different numbers.
 /// The tables print the four numbers and the wall time of the evaluation, in this order.
+///
 
 /// The two fields, as lib/sph/setups/watkins_static.hpp makes them.
 template <int D>
@@ -176,6 +176,17 @@ std::vector<Vec<D>> shear_field(const sph::Particles<D>& p, double noise = 0, in
 }
 using sph::setups::compression_field;
 
+/// \subsection ch07_machinery The machinery of the static tests
+///
+/// Everything the steps share is in one file, `second_derivative_tests.hpp`, shown here: the
+/// four methods behind `Method` and `apply`, the frozen set `StaticSet`, the scores of the
+/// previous subsection (`measure`), and the tables and records of the sweeps that the steps
+/// fill.  Most steps call it through two functions: `run_method`, which times one method on one
+/// set and scores its answer, and `table`, which does that for all four and prints the rows.
+/// The records further down (`NoiseStudy`, `DisorderStudy`, `CostStudy`) are met again in
+/// Steps 4, 7 and 8.
+///
+/// \show_file second_derivative_tests.hpp
 /// \section ch07_step1 Step 1: on a lattice, no noise
 ///
 /// On a regular lattice every particle sees the same, symmetric neighbourhood: no sum has
@@ -229,6 +240,8 @@ std::vector<MethodResult<D>> lattice_rows(const Parameters& par, double& two_pi_
   return rows;
 }
 
+/// The step runs the lattice in both dimensions and keeps, besides the rows, each lattice's
+/// \f$ 2\pi h \f$, whose square bounds the library's lattice check at the end of the program.
 struct Step1 {
   std::vector<MethodResult<2>> rows2;
   std::vector<MethodResult<3>> rows3;
@@ -325,6 +338,14 @@ std::vector<MethodResult<D>> fig1(const app::Chapter& chapter, const Sets<D>& se
   return rows;
 }
 
+/// The figure is drawn by `four_panel_figure`, the first of the chapter's five figure
+/// functions.  All five are in the file `second_derivative_figures.hpp`, shown here: the paper's
+/// four-panel form, used again in Steps 4 and 5, the compressive field of Step 6, and the three
+/// summary figures of Steps 4, 7 and 8.  Two rules run through them: a method keeps one colour,
+/// marker and dash in every figure, and panels that set methods side by side share one range,
+/// so that the eye compares like with like.
+///
+/// \show_file second_derivative_figures.hpp
 /// \section ch07_step4 Step 4: a noisy velocity (Watkins' Fig 2)
 ///
 /// "In a real simulation, the velocity field is unlikely to be free from noise": the paper adds
@@ -706,6 +727,10 @@ struct PressureAndViscosity : sph::Scene<3> {
   using Terms = sph::Terms<sph::PressureHernquistKatz, sph::WatkinsViscosity<3>>;
 };
 
+/// A simulation's terms are part of its type: a scene derives from `sph::Scene` and lists them
+/// in `Terms`, and the step's passes are built for exactly that list.  So the two runs are two
+/// scenes, identical but for one entry.  `TermStudy` keeps the step's numbers: the errors, the
+/// two net forces and the two times.
 struct TermStudy {
   double rms = 0, max = 0, net_force = 0, net_force_flebbe = 0;
   double operators = 0;  // largest |a_term - a_operators| / largest |a|
@@ -726,6 +751,10 @@ TermStudy viscosity_term(const Sets<3>& sets) {
   sph::Simulation<PressureOnly> pressure(p, sph::setups::unit_box<3>(), settings);
   sph::Simulation<PressureAndViscosity> viscous(p, sph::setups::unit_box<3>(),
                                                 sph::WatkinsViscosity<3>({mu_s, mu_b}), settings);
+  /// Both simulations have evaluated their accelerations once, on construction.  We subtract
+  /// the pressure run's from the viscous run's and score the rest against the analytic
+  /// acceleration above, taken at each particle's own summed density and measured in units of
+  /// its largest value, `scale`.  The net force is read from the same differences.
   TermStudy r;
   // the viscous acceleration is the difference of the two runs' accelerations
   const auto& b = viscous.particles();
@@ -747,6 +776,12 @@ TermStudy viscosity_term(const Sets<3>& sets) {
   r.rms = std::sqrt(ss / static_cast<double>(b.size())) / scale;
   r.max /= scale;
   r.net_force = app::net_force_fraction(b.mass, visc);
+  /// Then the test of the term against the operators.  The simulation hands out its own
+  /// neighbour list and box, so the `ParticleSet` built from them is the very set the step
+  /// summed over; `curl_curl` and `grad_div` on it, weighted by the coefficients of eq 2 and
+  /// divided by \f$ \rho_i \f$, must reproduce the term to round-off.  Last come Flebbe's force
+  /// on the same field, for its net force, and the two steps timed by `alternating_medians` of
+  /// the test file.
   // the stand-alone operators on the step's own densities and neighbour list
   const dv::ParticleSet<3> set(b, viscous.neighbours(), viscous.box());
   const std::vector<Vec<3>> v(b.velocity.begin(), b.velocity.end());
@@ -807,6 +842,11 @@ struct Results {
   const TermStudy& term;
 };
 
+/// Each claim is one call.  `chapter.claim` states what the paper says and passes when it
+/// holds; `chapter.not_reproduced` states a claim that the text above finds *not* to hold, and
+/// fails the run if it starts to hold, since the text would then be wrong.  `begin_claims` is
+/// told whether the options are the chapter's own: only then can the paper's claims fail the
+/// run.  The first two claims read the settled set's rows of Step 3.
 void check_claims(app::Chapter& chapter, bool own_schemes, const Results& r) {
   chapter.begin_claims(own_schemes);
   const auto& s = r.settled;
@@ -821,6 +861,10 @@ void check_claims(app::Chapter& chapter, bool own_schemes, const Results& r) {
                ab = errors_of(s, Method::brookshaw).amplitude;
   chapter.claim(aw < ab && af < ab, "Fig 1 two-pass 'over-smoothed at the peaks': amplitude " +
                                         format("%.3f, %.3f < %.3f", aw, af, ab));
+  /// Fig 2 is decided on the sweep's means over the three draws at the chosen amplitude, not
+  /// on the single draw of the figure, so that no one pattern of noise settles it.  The
+  /// thresholds are those of Step 4; the conclusion of §3, a factor two over Flebbe, is the
+  /// first finding that is checked as not reproduced.
   // (Fig 2: the means over three noise draws at the chapter's amplitude)
   const double eps = r.noise.amplitudes.empty() ? 0 : r.noise_amplitude;
   const double nw = r.noise.at(eps, Method::watkins), nf = r.noise.at(eps, Method::flebbe),
@@ -835,6 +879,9 @@ void check_claims(app::Chapter& chapter, bool own_schemes, const Results& r) {
                          "Sect 3 'considerably more accurate than Flebbe', velocity "
                          "noise: " +
                              format("%.4f against %.4f", nw, nf));
+  /// Fig 3 reads the random set's rows: *by far* is below half of both other methods' errors,
+  /// and the noise of Watkins' curl curl, its scatter about the fitted sine, is compared with
+  /// the density's relative scatter -- less, as claimed, but not considerably less.
   const auto& q = r.random.rows;
   const double rw = errors_of(q, Method::watkins).rms, rf = errors_of(q, Method::flebbe).rms,
                rb = errors_of(q, Method::brookshaw).rms;
@@ -848,6 +895,11 @@ void check_claims(app::Chapter& chapter, bool own_schemes, const Results& r) {
                     format("%.3f / %.3f = %.2f", noise, r.random.density_noise, ratio));
   chapter.not_reproduced(ratio < 0.5,
                          "Fig 3 'considerably less' (a ratio below 0.5): " + format("%.2f", ratio));
+  /// The last four checks are the library's, passed `true` as `always`, so that they count
+  /// whatever the options: every operator on the lattice stays within Step 1's smoothing
+  /// bound, Brookshaw's Laplacian fails the compressive field while Watkins' curl curl of it
+  /// stays near zero, and the term in the step equals the stand-alone operators and comes
+  /// within half that bound of the analytic acceleration.
   // the library's promises, whatever the options
   double lattice_worst = 0;
   for (const auto& row : r.lattice.rows3) lattice_worst = std::max(lattice_worst, row.errors.max);
@@ -987,6 +1039,9 @@ int main(int argc, char** argv) {
     const bool own = par.particles == 5000 && par.neighbours_2d == 30 && par.neighbours_3d == 60 &&
                      par.noise == 0.1;
 
+    /// The steps, in order.  The sets of Step 2 are made once, and every later step reads them:
+    /// the settled set and the random set are the same particles from Step 3 to Step 9.  Each
+    /// step returns its record, and the 3D records are kept for the claims.
     const Step1 lattice = step1_lattice(par);
     std::printf("Step 2: the particle sets\n");
     const Sets<2> sets2 = make_sets<2>(par);
@@ -1013,6 +1068,9 @@ int main(int argc, char** argv) {
     cost_figure(chapter, cost_study);
     std::printf("\nStep 9: the Navier-Stokes viscosity as a term of the step\n");
     const TermStudy term = viscosity_term(sets3);
+    /// Last, the one line that the table of all chapters shows for this one -- the rms errors of
+    /// the paper's three methods on the random 3D set, the test that tells them apart -- and the
+    /// claims, which read the 3D records only.
     chapter.summary(
         "error", "random 3D set, rms error of curl curl / 4 pi^2: Watkins " +
                      format("%.3f", errors_of(random3.rows, Method::watkins).rms) + ", Flebbe " +

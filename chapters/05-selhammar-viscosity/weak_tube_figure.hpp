@@ -4,20 +4,15 @@
 /// and \f$ \rho \f$ against z, one panel each, the particles as dots, the Lagrangian reference
 /// as a red line and the Riemann solution of the initial jump as a dashed grey line.
 ///
-/// \code
-/// app::save_weak_tube_figure(run, ref, app::weak_tube_riemann(setup), 20.0,
-///                            chapter.figure_path("fig1_standard.png").string(),
-///                            "Weak shock tube, standard viscosity (Selhammar Fig 1)");
-/// \endcode
-///
-/// Every particle is drawn at its z, so the scatter of a column of particles about the line is
-/// seen as in the paper.  Each panel's scale is that of the gas (particles and reference): the
-/// Riemann solution, drawn over the whole window, would otherwise set it with the states it
-/// keeps beyond the ends of the expanded gas.
+/// The program's step3_weak_tube(), just above, calls it once per viscosity.  Every particle is
+/// drawn at its z, so the scatter of a column of particles about the line is seen as in the
+/// paper.  Each panel's scale is that of the gas (particles and reference): the Riemann
+/// solution, drawn over the whole window, would otherwise set it with the states it keeps
+/// beyond the ends of the expanded gas.
 ///
 /// Header-only: a chapter that includes it links sph_plot.
 
-#include "app/selhammar_viscosity/weak_tube_run.hpp"
+#include "weak_tube_run.hpp"
 #include "plot/figure.hpp"
 
 #include <algorithm>
@@ -40,6 +35,9 @@ inline void save_weak_tube_figure(const WeakTubeRun& run, const sph::LagrangianP
                            .particles = static_cast<long long>(run.particles.size()),
                            .run_time = run.seconds,
                            .extra = "t = 20"});
+  /// The data first: the particles' \f$ v_z \f$, P and \f$ \rho \f$ at their z, and the
+  /// Riemann solution on a grid of its own, much finer than the particles' spacing -- it is a
+  /// formula, and can be evaluated anywhere.
   // The particles' values at their z.
   std::vector<double> z, v, P, rho;
   for (std::size_t i = 0; i < run.particles.size(); ++i) {
@@ -57,6 +55,9 @@ inline void save_weak_tube_figure(const WeakTubeRun& run, const sph::LagrangianP
     rP.push_back(w.pressure);
     rrho.push_back(w.density);
   }
+  /// The three panels differ only in the quantity, so a small table pairs each axis label with
+  /// its three curves and one loop draws them all.  The reference is drawn last, over the dots
+  /// and the dashed Riemann curve, so that it stays visible where the particles crowd.
   struct Panel {
     const char* label;
     const std::vector<double>& particles;

@@ -9,7 +9,7 @@
 /// line at 0.9 \f$ t_\mathrm{ff} \f$, beyond which the shells come within a few softening
 /// lengths of the centre.
 ///
-/// Header-only: a chapter that includes it links sph_plot.
+/// Header-only: the program that includes it links sph_plot.
 
 #include "plot/figure.hpp"
 
@@ -42,6 +42,8 @@ inline void save_free_fall_figure(const std::string& path, const FreeFallHistory
   figure.stamp(plot::Stamp{.kernel = "M4", .particles = particles, .extra = extra});
   const plot::Color colors[] = {plot::red, plot::blue, plot::green};
   const char* names[] = {"10 % of the mass", "50 %", "75 %"};
+  /// The analytic curve is drawn wide and first, so that the shells' markers, which lie on it
+  /// almost to the end of the fall, stay visible on top of it.
   plot::Axes& left = figure.panel(0);
   left.xlabel("t / t_{ff}").ylabel("r / r_0").xlim(0, 1).ylim(0, 1.05).title("shell radii");
   left.line(t, exact, {.label = "analytic r/r_0 = cos^2\\beta", .color = plot::black, .width = 4});

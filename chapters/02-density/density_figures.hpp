@@ -147,6 +147,9 @@ inline void save_lattice_bias_figure(const std::string& path, const std::string&
     }
     figure.panel(panel).xlabel("\\eta = h / \\Delta x  (mean spacing \\Delta x)").xlim(0.9, 2.4);
   }
+  /// Panel (a) adds the zero line and the marked point of the text; panel (b), on a log scale,
+  /// adds the 1D bound of Step 4.  Its curves share the colours of (a), which is why the loop
+  /// above gives a legend only to the first panel.
   // (a): zero, the mark and its vertical.
   plot::Axes& a = figure.panel(0);
   a.hline(0.0, {.color = plot::grey, .style = plot::Dash::dotted, .width = 1.0});

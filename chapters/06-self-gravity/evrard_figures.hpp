@@ -5,11 +5,11 @@
 /// Selhammar's Fig 5), and one run's radial velocity, density and pressure at t = 0.8 over the
 /// finite-volume reference (app::save_evrard_profile_figure, his Figs 6-7).
 ///
-/// Header-only: a chapter that includes it links sph_plot.
+/// Header-only: the program that includes it links sph_plot.
 
-#include "app/self_gravity/evrard_reference.hpp"
-#include "app/self_gravity/evrard_run.hpp"
-#include "app/self_gravity/radial_profile.hpp"
+#include "evrard_reference.hpp"
+#include "evrard_run.hpp"
+#include "radial_profile.hpp"
 #include "plot/figure.hpp"
 
 #include <algorithm>
@@ -133,6 +133,8 @@ inline void save_evrard_profile_figure(const std::string& path, const EvrardRun&
   const std::vector<double>* reference_values[] = {&ref.v, &ref.rho, &ref.pressure};
   const char* labels[] = {"v_r  [code units]", "\\rho  [code units]", "P  [code units]"};
   const char* titles[] = {"radial velocity", "density", "pressure"};
+  /// The radius axis is logarithmic, so that the core and the shock get as much room as the
+  /// infalling envelope; so are density and pressure, which span decades from one to the other.
   for (int panel = 0; panel < 3; ++panel) {
     plot::Axes& ax = figure.panel(panel);
     ax.xscale(plot::Scale::log).xlim(0.005, 1.2).xlabel("r  [code units]").ylabel(labels[panel]);

@@ -4,7 +4,7 @@
 /// four-panel form, the compressive field, and the three summary figures (errors against the
 /// noise, against the disorder, and against the resolution and run time).
 ///
-/// Every figure takes the records of lib/app/second_derivatives/second_derivative_tests.hpp and
+/// Every figure takes the records of `second_derivative_tests.hpp` (shown before Step 1) and
 /// draws each method in its own colour, marker and dash (app::second_derivatives::method_style), so
 /// that the same method looks the same in all of them.  Each is stamped with the scheme (constant
 /// h, gather density), the kernel and the particle and neighbour numbers, and saved through
@@ -13,7 +13,7 @@
 /// Header-only: a chapter that includes it links sph_plot.
 
 #include "app/chapter.hpp"
-#include "app/second_derivatives/second_derivative_tests.hpp"
+#include "second_derivative_tests.hpp"
 #include "app/text.hpp"
 #include "plot/figure.hpp"
 
@@ -56,6 +56,9 @@ void four_panel_figure(const app::Chapter& chapter, const std::string& file,
   a.xlabel(along + "  [box lengths]").ylabel(panel_a_label + "  [code units]").xlim(0, 1);
   a.title(panel_a_label + " at the particles");
   a.scatter(y, panel_a, {.color = plot::black, .size = 2.0});
+  /// Panels (b)-(d) then share one y range, so that each method's scatter is judged at the
+  /// others' scale.  Each draws one method's x-component at the particles over the analytic
+  /// curve; its title carries the rms of the whole error vector, y and z components included.
   // the common y range of panels (b)-(d): the analytic range with a margin, widened to the
   // results' 0.5 and 99.5 percentiles (a few outliers must not squash the curve)
   double lo = -1.3 * k2, hi = 1.3 * k2;
@@ -113,6 +116,10 @@ void compression_figure(const app::Chapter& chapter, const StaticSet<D>& s,
   a.xlabel("x  [box lengths]").ylabel("v_x  [code units]").xlim(0, 1);
   a.title("v_x at the particles");
   a.scatter(x, vx, {.color = plot::black, .size = 2.0});
+  /// Panels (b) and (c) are Watkins' and Flebbe's gradient of the divergence on a fixed range
+  /// about the analytic curve.  Panel (d), Brookshaw's Laplacian taken as a curl curl, gets the
+  /// same range: its error, the whole field, is then seen at the scale of the answer it stands
+  /// in for.
   const double lo = -1.3 * k2, hi = 1.3 * k2;
   for (int k = 0; k < 2; ++k) {
     const MethodResult<D>& r = rows[k == 0 ? 0 : 2];  // Watkins, Flebbe
@@ -183,6 +190,9 @@ inline void disorder_figure(const app::Chapter& chapter, const DisorderStudy<2>&
                            .extra = "glass moved by random offsets up to 2 spacings, then the "
                                     "Poisson set; densities with the self term, except the open "
                                     "markers (Fig 3's set without it); 2D: 30 neighbours, 3D: 60"});
+  /// Each panel draws a curve per method through the disturbed glasses to the Poisson set, and
+  /// the Poisson set as Fig 3 sums it, without the self term, as an open marker off the curve.
+  /// On the 3D panel two vertical lines mark the density scatter of Watkins' own two sets.
   // (the paper's two sets are 3D: their scatter is marked on the 3D panel only)
   auto draw = [&](plot::Axes& ax, const auto& study, const std::string& title, bool paper_sets) {
     ax.xscale(plot::Scale::log).yscale(plot::Scale::log);
@@ -240,6 +250,10 @@ inline void cost_figure(const app::Chapter& chapter, const CostStudy& study) {
   c.xscale(plot::Scale::log).yscale(plot::Scale::log);
   c.xlabel("wall time of one evaluation [s]").ylabel("rms error / 4\\pi^2");
   c.title("against run time, N = 1000 to " + std::to_string(study.by_n.back().particles));
+  /// Every method gets one line in each panel, in its own style: the series against N gives
+  /// panels (a) and (c), the series against the neighbour number panel (b).  Panel (a) also gets
+  /// the slope that the smoothing alone would give, \f$ N^{-2/3} \f$: where a method's curve
+  /// leaves it, the glass's noise has taken over.
   for (std::size_t k = 0; k < all_methods.size(); ++k) {
     std::vector<double> n, en, g, eg, t, et;
     for (const auto& r : study.by_n) {

@@ -5,15 +5,8 @@
 ///
 /// Each kernel is sampled once into app::KernelCurves (value, slope and weight at \f$ h = 1 \f$)
 /// and each transform into app::TransformCurve; save_kernel_figure() draws them, every kernel
-/// with its own colour and dash in all three panels:
-///
-/// \code
-/// std::vector<app::KernelCurves> kernels = {
-///     app::kernel_curves<3, sph::Kernel<3>>("M4, 3D", plot::blue, plot::Dash::solid, 800)};
-/// std::vector<app::TransformCurve> transforms = {app::transform_curve(
-///     "M4, 3D", plot::blue, plot::Dash::solid, 800, [](double kh) { return ...; })};
-/// app::save_kernel_figure(path, "The M4", stamp, kernels, transforms, {8.5, -6e-4, "< 0"});
-/// \endcode
+/// with its own colour and dash in all three panels.  Step 6's `step6_figure`, just above, is the
+/// one caller: six kernels, three transforms and the note on the M4's lobe.
 ///
 /// Header-only: a chapter that includes it links sph_plot.
 
@@ -111,6 +104,10 @@ inline void save_kernel_figure(const std::string& path, const std::string& title
       .xlabel("q = r/h")
       .ylabel("S_D q^{D-1} h^D W  (unit area)")
       .legend(plot::Corner::upper_right);
+  /// The transforms get a panel of their own scale.  The M4's negative lobe in 3D is less than a
+  /// thousandth of \f$ \hat W(0) = 1 \f$ deep and would be invisible on a scale that shows the
+  /// whole transform, so panel (d) is magnified to the band around zero, with a dotted zero line
+  /// for the M4 to cross and the Wendland C2 to stay above.
   // Panel (d): the transforms, the zero line and the note.
   plot::Axes& fourier = figure.panel(3);
   for (const TransformCurve& c : transforms) {

@@ -3,23 +3,17 @@
 /// \brief The two figures of the homologous compression, in the layout of Selhammar's Figs 3
 /// and 4: the energies against time, and the density against radius at maximum compression.
 ///
-/// \code
-/// app::save_sphere_energy_figure(runs, reference, setup, chapter.figure_path("e.png").string(),
-///                                "Homologous compression: energies (Selhammar Fig 3)");
-/// app::save_sphere_density_figure(runs, setup, 2000, chapter.figure_path("rho.png").string(),
-///                                 "Homologous compression: density at maximum compression");
-/// \endcode
-///
-/// The energy figure has two panels, the whole run and a magnified bounce; the reference is
-/// drawn first, wide and light, so that the runs show on top of it.  The density figure has one
-/// panel per run (up to four).  The panels of the runs that come within a factor ten of the
-/// zeroth-order density (eq 26) share one scale, as in the paper, and show that estimate and the
-/// reference at the run's own time of maximum compression; a run that stalls far short of it
-/// gets its own scale and a note saying so.
+/// The program's step4_homologous_sphere(), just above, draws both.  The energy figure has two
+/// panels, the whole run and a magnified bounce; the reference is drawn first, wide and light,
+/// so that the runs show on top of it.  The density figure has one panel per run (up to four).
+/// The panels of the runs that come within a factor ten of the zeroth-order density (eq 26)
+/// share one scale, as in the paper, and show that estimate and the reference at the run's own
+/// time of maximum compression; a run that stalls far short of it gets its own scale and a note
+/// saying so.
 ///
 /// Header-only: a chapter that includes it links sph_plot.
 
-#include "app/selhammar_viscosity/homologous_sphere_run.hpp"
+#include "homologous_sphere_run.hpp"
 #include "plot/figure.hpp"
 
 #include <algorithm>
@@ -83,6 +77,11 @@ inline void save_sphere_density_figure(const std::vector<SphereRun>& runs,
                            .extra = "maximum compression = largest density"});
   const double rho_estimate = setup.zeroth_order_density(),
                r_estimate = setup.zeroth_order_radius();
+  /// First the common scale.  A run counts as reaching the estimate when its largest density
+  /// is within a factor ten of \f$ \rho' \f$.  For each such run the Lagrangian sphere is run
+  /// once more, to that run's own time of maximum compression, and the scale is the largest of
+  /// the estimate, the runs' peaks and the references' densities, so that no panel on it
+  /// clips a peak.
   // The panels whose gas reaches the estimate share one scale, as in the paper.
   const auto compact = [&](const SphereRun& run) { return run.peak_density > 0.1 * rho_estimate; };
   double common = rho_estimate;
@@ -93,6 +92,8 @@ inline void save_sphere_density_figure(const std::vector<SphereRun>& runs,
     common = std::max({common, runs[k].peak_density,
                        *std::max_element(refs[k].density.begin(), refs[k].density.end())});
   }
+  /// Then one panel per run: the density of every particle against its distance from the centre
+  /// of mass, at the run's maximum compression, with the run's name and that time as heading.
   for (std::size_t k = 0; k < runs.size(); ++k) {
     // The particles' density against their distance from the centre of mass.
     const SphereRun& run = runs[k];
@@ -109,6 +110,9 @@ inline void save_sphere_density_figure(const std::vector<SphereRun>& runs,
     ax.title(heading).xlabel("r  [code units]").ylabel("\\rho  [code units]");
     if (compact(run)) ax.xlim(0, 3 * r_estimate).ylim(0, 1.05 * common);
     ax.scatter(r, rho, {.label = "SPH particles", .color = plot::black, .size = 2.0});
+    /// On the common scale the estimate is drawn as what eq 26 assumes, a uniform sphere of
+    /// radius \f$ R' \f$ -- a step in \f$ \rho(r) \f$ -- beside the reference; a panel on its
+    /// own scale gets a note of how far off the estimate is instead.
     if (compact(run)) {
       // The estimate as a uniform sphere, and the reference at the same time.
       ax.line(std::vector<double>{0, r_estimate, r_estimate, 3 * r_estimate},

@@ -12,7 +12,7 @@
 /// times of both methods on log-log axes with \f$ N^2 \f$ and \f$ N\log N \f$ guides through their
 /// middle points.
 ///
-/// Header-only: a chapter that includes it links sph_plot.
+/// Header-only: the program that includes it links sph_plot.
 
 #include "plot/figure.hpp"
 
@@ -187,6 +187,8 @@ inline void save_tree_cost_figure(const std::string& path, const std::vector<int
   plot::Axes& ax = figure.panel(0);
   ax.xscale(plot::Scale::log).yscale(plot::Scale::log);
   ax.xlabel("N  [particles]").ylabel("wall time of one evaluation  [s]");
+  /// Direct summation's points stop where it was not run (a negative time); the tree's go on
+  /// to the largest N.
   std::vector<double> nd, td, nt, tt;
   for (std::size_t k = 0; k < counts.size(); ++k) {
     if (direct_seconds[k] > 0) {

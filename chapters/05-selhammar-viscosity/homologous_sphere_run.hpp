@@ -6,24 +6,17 @@
 /// in spherical shells.
 ///
 /// The sphere (sph::make_homologous_sphere) falls inwards with \f$ \mathbf v = -2\mathbf r \f$,
-/// without gravity or boundary.  A chapter runs it with several viscosities, in the rest frame
-/// and in a moving one:
-///
-/// \code
-/// const app::SphereRun run = app::run_homologous_sphere<Standard<3>>(
-///     "standard", setup, {{}, sph::MonaghanGingold1983(1, 2)}, 0.7);
-/// const app::SphereReference ref = app::homologous_sphere_reference(setup, 2000, 0.7);
-/// std::printf("%.4f\n", app::value_at(run.t, run.thermal, 0.3));
-/// \endcode
+/// without gravity or boundary.  The chapter runs it with several viscosities, in the rest frame
+/// and in a moving one; step4_homologous_sphere() and galilean_boost(), below, make the calls.
 ///
 /// **Maximum compression** is the moment of the largest density of any particle (of the
 /// central shell in the reference); the run keeps its particles there.  **A moving frame**: a
 /// run given a boost adds it to every velocity at the start, and measures the kinetic energy
 /// in the frame that moves with the boost, so that the energies of the two frames compare
 /// directly.  After every step (and once at the start) the run hands the simulation to a
-/// callable, so that a chapter can follow its terms as they act.
+/// callable, so that the chapter can follow its terms as they act.
 ///
-/// Header-only, like the other shared pieces of lib/app that use lib/sph.
+/// Header-only, like the chapter's other files that use lib/sph.
 
 #include "app/particle_measures.hpp"
 #include "app/progress.hpp"
@@ -41,7 +34,7 @@
 
 namespace app {
 
-/// What a chapter keeps of one run of the homologous sphere.
+/// What the chapter keeps of one run of the homologous sphere.
 struct SphereRun {
   std::string name;
   std::vector<double> t, kinetic, thermal;  ///< after every step (kinetic: in the boost's frame)
@@ -79,6 +72,9 @@ SphereRun run_homologous_sphere(const std::string& name, const sph::HomologousSp
   const Stopwatch clock;
   sph::Simulation<Scene> sim(std::move(start), sph::Box<3>::open(), terms,
                              sph::IdealGas{setup.gamma}, settings);
+  /// The record of one step.  The particles are copied whenever the largest density rises, so
+  /// the copy that remains is the state at maximum compression, whenever in the run that comes;
+  /// the probe is called last, on the step just recorded.
   const auto record = [&](const sph::Simulation<Scene>& s) {
     // The energies, the kinetic one in the boost's frame.
     const auto& p = s.particles();
@@ -102,6 +98,9 @@ SphereRun run_homologous_sphere(const std::string& name, const sph::HomologousSp
     }
     probe(s);
   };
+  /// The run: one record at the start, so that the energy change is measured from the initial
+  /// state, then one after every step.  The momentum drift is measured against the boosted
+  /// start, so the boost by itself is no drift.
   record(sim);
   ProgressDisplay display = ProgressDisplay::automatic();
   display.report = nullptr;

@@ -15,10 +15,10 @@
 /// std::printf("%s", cost.study.table().c_str());
 /// \endcode
 ///
-/// The errors recorded are those of app::unit_density_errors: the set's intended density is
-/// one everywhere.
+/// The errors recorded are those of app::unit_density_errors (in uniform_set_measures.hpp,
+/// shown in Step 3): the set's intended density is one everywhere.
 
-#include "app/density/uniform_set_measures.hpp"
+#include "uniform_set_measures.hpp"
 #include "app/stopwatch.hpp"
 #include "app/text.hpp"
 #include "sph/box.hpp"
@@ -52,13 +52,11 @@ double timed_density_step(sph::Particles<D>& p, const sph::Box<D>& box, sph::Den
   return clock.seconds();
 }
 
-/// While it exists, OpenMP runs on one thread; the number of threads before is restored when
-/// it goes.
+/// While it exists, OpenMP runs on one thread: its constructor remembers the number of threads
+/// and sets it to one, and its destructor restores the number it remembered.
 class SingleThread {
  public:
-  /// Remembers the number of threads and sets it to one.
   SingleThread() : threads_(omp_get_max_threads()) { omp_set_num_threads(1); }
-  /// Restores the number of threads.
   ~SingleThread() { omp_set_num_threads(threads_); }
   SingleThread(const SingleThread&) = delete;             ///< not copied
   SingleThread& operator=(const SingleThread&) = delete;  ///< not assigned

@@ -24,7 +24,7 @@
 /// const auto rows = app::second_derivatives::table(s, velocity, Operator::curl_curl, "settled");
 /// \endcode
 ///
-/// Header-only, like the other shared pieces of lib/app that use lib/sph.
+/// The file is header-only and belongs to this chapter: every line of it is shown here.
 
 #include "app/particle_measures.hpp"
 #include "app/stopwatch.hpp"

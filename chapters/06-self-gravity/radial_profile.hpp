@@ -5,7 +5,7 @@
 /// (app::radial_profile), and a one-dimensional reference put into the same bins
 /// (app::binned_reference); the shock on a binned velocity profile (app::find_shock); the binned
 /// profile's errors against a one-dimensional reference (app::profile_errors).  The radius of a
-/// mass shell is app::radius_holding (particle_measures.hpp).
+/// mass shell is app::radius_holding (lib/app/particle_measures.hpp).
 ///
 /// A spherical problem run in 3D is compared with a 1D calculation through these:
 ///

@@ -7,7 +7,8 @@
 /// The left panel draws \f$ |\text{sum} - 1| \f$ of both sums on a log scale, so that a sum
 /// that is exact shows as a dip to the bottom of the panel (an exact zero, which a log scale
 /// cannot show, is drawn at \f$ 10^{-7} \f$); the right panel draws the error on a log scale.
-/// Read side by side, they say whether the error follows the sums:
+/// Read side by side, they say whether the error follows the sums.  A program fills the curves
+/// one \f$ \eta \f$ at a time and then saves the figure, as Step 2 does just below:
 ///
 /// \code
 /// app::LatticeSumsCurves curves{.error_label = "Sod 1D"};
@@ -15,7 +16,7 @@
 /// app::save_lattice_sums_figure(curves, "Lattice sums and the Sod error", stamp, path);
 /// \endcode
 ///
-/// Header-only: a chapter that includes it links sph_plot.
+/// The file is header-only; a program that includes it links the plotting library, sph_plot.
 
 #include "plot/figure.hpp"
 
@@ -37,17 +38,17 @@ struct LatticeSumsCurves {
   std::string error_axis = "L_1(\\rho)";  ///< the axis label of the error panel (markup)
 };
 
-/// \f$ |s - 1| \f$ for each sum s, with the values below \f$ 10^{-7} \f$ (an exact sum) raised
-/// to \f$ 10^{-7} \f$, where a log scale can draw them.
+/// `departures_from_one` gives \f$ |s - 1| \f$ for each sum s, with the values below
+/// \f$ 10^{-7} \f$ (an exact sum) raised to \f$ 10^{-7} \f$, where a log scale can draw them.
 inline std::vector<double> departures_from_one(const std::vector<double>& sums) {
   std::vector<double> departures;
   for (double s : sums) departures.push_back(std::max(std::abs(s - 1.0), 1e-7));
   return departures;
 }
 
-/// Saves the figure to \p path: the departures of the two sums from one against
-/// \f$ h/\Delta x \f$ on the left, the error on the right, with the title \p title and the stamp
-/// \p stamp.
+/// `save_lattice_sums_figure` saves the figure to \p path: the departures of the two sums from
+/// one against \f$ h/\Delta x \f$ on the left, the error on the right, with the title \p title
+/// and the stamp \p stamp.
 inline void save_lattice_sums_figure(const LatticeSumsCurves& curves, const std::string& title,
                                      const plot::Stamp& stamp, const std::string& path) {
   plot::Figure fig(1, 2, {.width = 1500, .height = 600});

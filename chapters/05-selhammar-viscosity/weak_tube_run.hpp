@@ -6,21 +6,15 @@
 /// errors and totals off the two.
 ///
 /// The tube (sph::make_weak_tube) is a dense slab beside a thin gas in a
-/// \f$ 1 \times 1 \times 9 \f$ box, periodic across and open at both ends.  A chapter runs it
-/// with several viscosities and readings, so the run is written once:
-///
-/// \code
-/// const app::WeakTubeRun run = app::run_weak_tube<Standard<3>>(
-///     "standard", setup, {{}, sph::MonaghanGingold1983(1, 2)}, settings);
-/// const sph::LagrangianProfile ref = app::weak_tube_reference(setup, 2000);
-/// const app::WeakTubeErrors all = app::errors_along_z(run.particles, ref);
-/// \endcode
+/// \f$ 1 \times 1 \times 9 \f$ box, periodic across and open at both ends.  The chapter runs
+/// it with several viscosities and readings, so the run is written once; step2_readings(),
+/// below, shows the calls: a run, its reference, and the errors read off the two.
 ///
 /// The run pauses at evenly spaced times (twice by default: t = 10 and 20) and hands the
-/// simulation to a callable, so that a chapter can take a census of its terms there without
+/// simulation to a callable, so that the chapter can take a census of its terms there without
 /// this file knowing which terms a scene has.
 ///
-/// Header-only, like the other shared pieces of lib/app that use lib/sph.
+/// Header-only, like the chapter's other files that use lib/sph.
 
 #include "app/curve_reading.hpp"
 #include "app/particle_measures.hpp"
@@ -40,7 +34,7 @@
 
 namespace app {
 
-/// What a chapter keeps of one run of the weak tube.
+/// What the chapter keeps of one run of the weak tube.
 struct WeakTubeRun {
   std::string name;
   sph::Particles<3> particles;  ///< at the end time

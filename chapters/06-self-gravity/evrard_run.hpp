@@ -4,7 +4,7 @@
 /// particles at t = 0.8, the extremes of its centre, its conservation errors and its cost; and
 /// app::extremes, the peaks of an energy history.
 ///
-/// A chapter names the scene (its terms and its gravity) and runs it:
+/// The program names the scene (its terms and its gravity) and runs it:
 ///
 /// \code
 /// const app::EvrardRun run = app::run_evrard<Standard<sph::TreeGravity>>(
@@ -25,7 +25,7 @@
 /// minimum, a step budget exceeded, a non-finite value) is not an error here: the message is
 /// kept in EvrardRun::stopped and the run returns what it recorded.
 ///
-/// Header-only, like the other shared pieces of lib/app that use lib/sph.
+/// Header-only, like the chapter's other helper files.
 
 #include "app/particle_measures.hpp"
 #include "app/progress.hpp"
@@ -42,7 +42,7 @@
 
 namespace app {
 
-/// What a chapter keeps of one run of the Evrard collapse.
+/// What the chapter keeps of one run of the Evrard collapse.
 struct EvrardRun {
   std::string name;
   int particles = 0;
@@ -145,6 +145,9 @@ EvrardRun run_evrard(const std::string& name, const sph::EvrardSetup& setup,
     evrard_run_detail::record(run, s);
     progress.update(s.steps() - 1, s.time(), s.last_limit().dt);
   };
+  /// `run_until` advances the simulation to a time.  With individual time steps it goes there
+  /// in pieces that end on multiples of `EvrardRun::record_interval`, so that a block ends, and
+  /// the energies are recorded, at least that often.
   // (with individual time steps, a block ends at least every record_interval)
   const auto run_until = [&](double t) {
     if constexpr (sph::Simulation<Scene>::individual_steps) {
@@ -158,6 +161,9 @@ EvrardRun run_evrard(const std::string& name, const sph::EvrardSetup& setup,
       sim.run_until(t, on_step);
     }
   };
+  /// The run: to t = 0.8, where it keeps the particles, their centre of mass and the cost so
+  /// far, then on to the end.  If the simulation stops the run, its message ends up in
+  /// `EvrardRun::stopped`, and what was recorded is returned all the same.
   try {
     run_until(std::min(0.8, t_end));
     run.at_08 = sim.particles();

@@ -6,15 +6,7 @@
 /// is monotone, against Mach number.
 ///
 /// The chapter supplies the formulas and the library's numbers as callables, so that the
-/// figure holds only the drawing:
-///
-/// \code
-/// app::CollectiveKickCurves curves;
-/// curves.explicit_speed = [](double kdt, double ratio) { return 1 - kdt * std::sqrt(ratio); };
-/// ... the other four ...
-/// curves.marks = {{"M = 0", 8.73}, {"M = 1", 6.0}};
-/// app::save_collective_kick_figure(curves, chapter.figure_path("kick.png").string());
-/// \endcode
+/// figure holds only the drawing; step1_stiffness(), just above, fills them in.
 ///
 /// A speed is that of a particle of speed 1 whose neighbourhood comes at it with the speed
 /// ratio \f$ |a|/w \f$; panel (a) draws the ratios 1 (head on, blue) and 0.1 (green), panel

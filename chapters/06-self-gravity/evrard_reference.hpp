@@ -1,7 +1,7 @@
 #pragma once
 /// \file
 /// \brief The one-dimensional references of the Evrard collapse: app::read_reference_table
-/// reads a whitespace-separated table shipped with a chapter, and app::load_evrard_reference
+/// reads a whitespace-separated table shipped with the chapter, and app::load_evrard_reference
 /// reads the two tables of independent codes and runs a third reference with lib/sph's own
 /// Lagrangian code.
 ///
@@ -16,7 +16,7 @@
 /// The third, sph::Lagrangian1D with self-gravity, is run here from the same initial state,
 /// \f$ \rho = 1/(2\pi r) \f$, \f$ u = 0.05 \f$, at rest.
 ///
-/// Header-only, like the other shared pieces of lib/app that use lib/sph.
+/// Header-only, like the chapter's other helper files.
 
 #include "sph/error.hpp"
 #include "sph/reference/lagrangian_1d.hpp"

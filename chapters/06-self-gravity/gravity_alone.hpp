@@ -4,7 +4,7 @@
 /// with its accelerations, potential energy, wall time and net force; and app::median_seconds,
 /// the median wall time of repeated calls.
 ///
-/// This is how a chapter measures one gravity module against another (a tree against direct
+/// This is how the chapter measures one gravity module against another (a tree against direct
 /// summation) on the same particles:
 ///
 /// \code
