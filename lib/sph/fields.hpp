@@ -12,12 +12,17 @@
 ///
 /// A pair function or a per-particle hook reads all of it through one ParticleView: plain
 /// pointers, copied into a local before a SIMD loop so that the compiler keeps them in
-/// registers (see forces.hpp).
+/// registers (see forces.hpp).  pair_geometry turns an entry of the neighbour list into the
+/// Pair that every pair function sees: the force pass, the gradient pass and a term's own
+/// census all build their pairs with it.
 
+#include "sph/kernel.hpp"
 #include "sph/neighbours.hpp"
+#include "sph/pair.hpp"
 #include "sph/particles.hpp"
 
 #include <array>
+#include <cmath>
 #include <cstddef>
 #include <vector>
 
@@ -90,5 +95,32 @@ struct ParticleView {
   /// Component a of v_i - v_j.
   double v_ij(int a, std::size_t i, std::size_t j) const { return v[a][i] - v[a][j]; }
 };
+
+/// The geometry and kinematics of particle i and one neighbour, the kernel gradient at
+/// \f$ \bar h_{ij} \f$: what every pair function sees.
+template <int D, class K>
+inline Pair<D> pair_geometry(const ParticleView<D>& in, std::size_t i, const Neighbour& nb) {
+  const std::size_t j = nb.index;
+  Pair<D> pr;
+  pr.i = i;
+  pr.j = j;
+  // (Component by component rather than with Eigen's dot(): Eigen's own SIMD code would stop
+  // the compiler from vectorising across pairs.)
+  pr.r2 = pr.rv = 0;
+#pragma GCC unroll 3
+  for (int a = 0; a < D; ++a) {
+    pr.r_ij[a] = in.x.separation(a, i, nb);
+    pr.v_ij[a] = in.v[a][i] - in.v[a][j];
+    pr.r2 += pr.r_ij[a] * pr.r_ij[a];
+    pr.rv += pr.r_ij[a] * pr.v_ij[a];
+  }
+  pr.h_bar = 0.5 * (in.h[i] + in.h[j]);
+  pr.r = std::sqrt(pr.r2);
+  pr.support2 = K::support * K::support * pr.h_bar * pr.h_bar;
+  // Pairs in the list reach 2 max(h_i, h_j); the kernel at h_bar may end sooner (the gradient
+  // factor is then zero).
+  pr.gradient_factor = K::gradient_factor(pr.r, pr.h_bar);
+  return pr;
+}
 
 }  // namespace sph

@@ -40,33 +40,6 @@
 
 namespace sph {
 
-/// The geometry and kinematics of particle i and one neighbour, the kernel gradient at
-/// \f$ \bar h_{ij} \f$: what every pair function sees.
-template <int D, class K>
-inline Pair<D> pair_geometry(const ParticleView<D>& in, std::size_t i, const Neighbour& nb) {
-  const std::size_t j = nb.index;
-  Pair<D> pr;
-  pr.i = i;
-  pr.j = j;
-  // (Component by component rather than with Eigen's dot(): Eigen's own SIMD code would stop
-  // the compiler from vectorising across pairs.)
-  pr.r2 = pr.rv = 0;
-#pragma GCC unroll 3
-  for (int a = 0; a < D; ++a) {
-    pr.r_ij[a] = in.x.separation(a, i, nb);
-    pr.v_ij[a] = in.v[a][i] - in.v[a][j];
-    pr.r2 += pr.r_ij[a] * pr.r_ij[a];
-    pr.rv += pr.r_ij[a] * pr.v_ij[a];
-  }
-  pr.h_bar = 0.5 * (in.h[i] + in.h[j]);
-  pr.r = std::sqrt(pr.r2);
-  pr.support2 = K::support * K::support * pr.h_bar * pr.h_bar;
-  // Pairs in the list reach 2 max(h_i, h_j); the kernel at h_bar may end sooner (the gradient
-  // factor is then zero).
-  pr.gradient_factor = K::gradient_factor(pr.r, pr.h_bar);
-  return pr;
-}
-
 /// What one pair adds to particle i: the bracket factor \f$ f = m_j B_{ij} g \f$ (acceleration
 /// \f$ -f\,\mathbf r_{ij} \f$, heating \f$ \tfrac12 f\, \mathbf r_{ij}\cdot\mathbf v_{ij} \f$), the
 /// non-central terms' acceleration and heating, and \f$ |\mu_{ij}| \f$.  (Plain scalars, so the

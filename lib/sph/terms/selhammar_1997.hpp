@@ -91,7 +91,6 @@
 #include "sph/dimension.hpp"
 #include "sph/error.hpp"
 #include "sph/fields.hpp"
-#include "sph/forces.hpp"
 #include "sph/kernel.hpp"
 #include "sph/pair.hpp"
 #include "sph/terms.hpp"
