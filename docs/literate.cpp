@@ -466,6 +466,15 @@ void write_programs(const Settings& settings, const Chapter& chapter,
   write_file(dir / (chapter.page + "-plain-" + file + ".txt"), plain);
 }
 
+/// A code line as the page shows it: a member's `///<` comment becomes a plain `//` comment of
+/// the same width, which Doxygen keeps in a code block (it drops documentation comments there,
+/// and with them what a field means).
+std::string shown_in_code(std::string line) {
+  const auto at = line.find("///<");
+  if (at != std::string::npos) line.replace(at, 4, "//  ");
+  return line;
+}
+
 /// Renders one file of chapter \p chapter into \p page: its prose (`///` lines) verbatim, each
 /// run of its code as a block.  In the program the \page and \builds_on lines are left out; in
 /// a helper file, `#pragma once` and the `\file` line, and its `\brief` is shown as a plain
@@ -488,7 +497,7 @@ void render_file(Page& page, const Chapter& chapter, const fs::path& file,
     const auto prose = prose_text(line);
     if (!prose) {
       if (!program && trim(line) == "#pragma once") continue;
-      code.push_back({line, at(file, number)});
+      code.push_back({shown_in_code(line), at(file, number)});
       continue;
     }
     // A comment line ending in a backslash continues onto the next line: the compiler would

@@ -47,13 +47,13 @@ struct MonaghanGingold1983 {
     require(std::isfinite(nu2) && nu2 > 0,
             "artificial viscosity: the nu^2 factor must be positive");
   }
-  // [declaration]
 
   std::string describe() const {
     char s[96];
     std::snprintf(s, sizeof s, "Monaghan-Gingold AV, alpha = %g, beta = %g", alpha, beta);
     return s;
   }
+  // [declaration]
 
   /// \f$ \Pi_{ij} \f$ for one pair, added to the bracket, with \f$ \bar\rho_{ij} \f$ and
   /// \f$ \bar c_{ij} \f$ the pair means, and \f$ |\mu_{ij}| \f$ for the time step (only pairs
