@@ -6,8 +6,10 @@
 
 #include <algorithm>
 #include <cctype>
+#include <cerrno>
 #include <cmath>
 #include <cstdio>
+#include <cstring>
 #include <fstream>
 #include <map>
 #include <memory>
@@ -350,6 +352,27 @@ int Chapter::finish() {
 void Chapter::set_streams(std::ostream& out, std::ostream& err) {
   out_ = &out;
   err_ = &err;
+}
+
+int checked_output_status(int status) noexcept {
+  errno = 0;
+  bool lost = false;
+  try {
+    std::cout.flush();
+    lost = !std::cout.good();
+  } catch (...) {
+    lost = true;
+  }
+  // (std::cout writes through C's stdout: an error there is where a full disk shows)
+  lost = std::fflush(stdout) != 0 || std::ferror(stdout) != 0 || lost;
+  if (!lost) return status;
+  const int cause = errno;
+  std::fprintf(stderr,
+               "error: the standard output could not be written%s%s%s: the run's console "
+               "output is incomplete\n",
+               cause != 0 ? " (" : "", cause != 0 ? std::strerror(cause) : "",
+               cause != 0 ? ")" : "");
+  return status != 0 ? status : 1;
 }
 
 void report_exception(const char* what) noexcept {

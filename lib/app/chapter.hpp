@@ -252,17 +252,23 @@ class Chapter {
 /// Prints "error: <what>" on standard error (used by run_main).
 void report_exception(const char* what) noexcept;
 
+/// Flushes standard output and returns \p status, or 1 (with a message on standard error) if
+/// anything the program wrote there was lost -- a full disk, a closed file -- so that a run
+/// whose console output is incomplete never ends as a success (used by run_main).
+int checked_output_status(int status) noexcept;
+
 /// Runs \p body (a callable returning the exit status, or void for 0) and turns any exception
 /// into "error: <what>" on standard error and exit status 1, so that bad input never crashes
-/// a program.  Use as `int main(int argc, char** argv) { return app::run_main([&] { ... }); }`.
+/// a program; a standard output that could not be written is an error too.  Use as
+/// `int main(int argc, char** argv) { return app::run_main([&] { ... }); }`.
 template <class Body>
 int run_main(Body&& body) noexcept {
   try {
     if constexpr (std::is_void_v<std::invoke_result_t<Body>>) {
       std::forward<Body>(body)();
-      return 0;
+      return checked_output_status(0);
     } else {
-      return static_cast<int>(std::forward<Body>(body)());
+      return checked_output_status(static_cast<int>(std::forward<Body>(body)()));
     }
   } catch (const std::exception& error) {
     report_exception(error.what());
