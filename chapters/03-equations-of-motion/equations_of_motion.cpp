@@ -343,6 +343,17 @@ struct Parameters {
   long pileup_steps = 20000;   // streams: the step budget of the run with h from the density
 
   sph::MonaghanGingold1983 viscosity() const { return {alpha, beta}; }
+  /// The viscous runs' name in tables, legends and titles: the paper's viscosity, or the
+  /// coefficients that ran (with `--alpha 0 --beta 0` no viscosity acts, and no label says
+  /// otherwise).
+  std::string viscous_name() const {
+    return alpha == 1 && beta == 2 ? "Monaghan-Gingold AV"
+                                   : format("AV alpha %g, beta %g", alpha, beta);
+  }
+  /// The coefficients as a formula, for titles.
+  std::string viscous_coefficients() const {
+    return format("\\alpha = %g, \\beta = %g", alpha, beta);
+  }
 };
 
 /// `declare_parameters` gives each option its default, its `--quick` default where it has one,
@@ -480,7 +491,7 @@ SodRuns step1_sod_runs(const app::Chapter& chapter, const Parameters& par) {
   std::printf("  1D, M4 kernel, h = N m/(4 rho) with N = %g (h = %g dx), left spacing 1/%d\n\n",
               sod.neighbours, sod.neighbours / 4, par.cells);
   SodRuns runs{run_sod<HernquistKatz<dim>>("no viscosity", sod, {}),
-               run_sod<WithViscosity<dim>>("Monaghan-Gingold AV", sod, {{}, par.viscosity()}),
+               run_sod<WithViscosity<dim>>(par.viscous_name(), sod, {{}, par.viscosity()}),
                run_sod<AsPrinted<dim>>("eq 4 as printed", sod, {})};
   const std::pair<const app::TubeRun<dim>*, const char*> stems[] = {
       {&runs.inviscid, "sod_no_viscosity"},
@@ -916,9 +927,10 @@ void step5_figures(const app::Chapter& chapter, const SodRuns& runs, const StarT
   }
   figure.save_png(chapter.figure_path("sod_no_viscosity.png").string());
 
-  sod_figure(runs.viscous, sod,
-             "Sod's shock tube with Monaghan-Gingold viscosity (\\alpha = 1, \\beta = 2)",
-             "SPH, Hernquist-Katz, Monaghan-Gingold AV")
+  sod_figure(
+      runs.viscous, sod,
+      "Sod's shock tube with Monaghan-Gingold viscosity (" + par.viscous_coefficients() + ")",
+      "SPH, Hernquist-Katz, " + par.viscous_name())
       .save_png(chapter.figure_path("sod_monaghan_gingold.png").string());
 
   figure = sod_figure(runs.printed, sod,
@@ -1068,7 +1080,7 @@ StreamRuns<dim> step6_colliding_streams(const app::Chapter& chapter, const Param
                                       sph::SmoothingLengthRule::from_density(4.0),
                                       par.pileup_steps),
       run_streams<WithViscosity<dim>>(
-          format("Monaghan-Gingold AV, %g neighbours", scene.neighbours), scene,
+          format("%s, %g neighbours", par.viscous_name().c_str(), scene.neighbours), scene,
           {{}, par.viscosity()}, neighbour_rule, unlimited)};
   s.dx = scene.setup.length / s.passing.left_count;
   /// The table has one row per run.  A run that stopped early gets a second line with the reason
@@ -1170,22 +1182,21 @@ void sweep_sod(sph::ErrorVsTime& study, const std::string& method, SodScene scen
 /// \f$ L_1(v) \f$, of the three quantities measured: the pressure error follows the density error
 /// closely in every row of the table, and a third panel would repeat the first.
 void save_error_figure(const sph::ErrorVsTime& study, const SodScene& scene, int finest,
-                       const std::string& path) {
+                       const Parameters& par, const std::string& path) {
   app::ErrorFigureOptions options;
-  options.title =
-      "Sod's shock tube, t = 0.2: L_1 error against run time, no viscosity and AV "
-      "(\\alpha = 1, \\beta = 2)";
+  options.title = "Sod's shock tube, t = 0.2: L_1 error against run time, no viscosity and AV (" +
+                  par.viscous_coefficients() + ")";
   options.quantities = {"L1(rho)", "L1(v)"};
   options.width = 1700;
   options.height = 720;
   options.stamp =
-      plot::format_stamp({.scheme = "SPH, Hernquist-Katz, without and with Monaghan-Gingold AV",
+      plot::format_stamp({.scheme = "SPH, Hernquist-Katz, without and with " + par.viscous_name(),
                           .kernel = "M4",
                           .neighbours = scene.neighbours,
                           .extra = format("dx = 1/100 ... 1/%d", finest)});
   plot::Figure figure = app::error_figure(study, options);
   for (int k = 0; k < 2; ++k) {
-    app::add_slope_guide(figure.panel(k), study.curve("Monaghan-Gingold AV", options.quantities[k]),
+    app::add_slope_guide(figure.panel(k), study.curve(par.viscous_name(), options.quantities[k]),
                          -0.5, "\\propto t^{-1/2}");
     figure.panel(k).legend(plot::Corner::lower_left);
   }
@@ -1216,10 +1227,9 @@ sph::ErrorVsTime step7_error_against_run_time(const app::Chapter& chapter, const
       "Sod's shock tube at t = 0.2: L1 errors in -0.5 <= x <= 0.5, "
       "N = particles there");
   sweep_sod<HernquistKatz<dim>>(study, "no viscosity", par.sod, {}, cells);
-  sweep_sod<WithViscosity<dim>>(study, "Monaghan-Gingold AV", par.sod, {{}, par.viscosity()},
-                                cells);
+  sweep_sod<WithViscosity<dim>>(study, par.viscous_name(), par.sod, {{}, par.viscosity()}, cells);
   std::printf("\n%s", study.table().c_str());
-  save_error_figure(study, par.sod, cells.back(),
+  save_error_figure(study, par.sod, cells.back(), par,
                     chapter.figure_path("sod_error_vs_time.png").string());
   return study;
 }
@@ -1344,7 +1354,7 @@ void check_claims(app::Chapter& chapter, const Findings& f) {
                 "viscous streams: more than 1 % of the inviscid inversions: " +
                     s.stopped.inversions.summary());
   const double order_inviscid = f.study.order("no viscosity", "L1(rho)");
-  const double order_viscous = f.study.order("Monaghan-Gingold AV", "L1(rho)");
+  const double order_viscous = f.study.order(f.sod.viscous.name, "L1(rho)");
   chapter.check(order_inviscid < 0.3, format("inviscid L1(rho) converges at order %.2f "
                                              "(expected < 0.3)",
                                              order_inviscid));

@@ -41,7 +41,7 @@ void four_panel_figure(const app::Chapter& chapter, const std::string& file,
   figure.stamp(plot::Stamp{.scheme = "constant h, gather density" +
                                      std::string(s.self_term ? "" : " without the self term"),
                            .kernel = "M4",
-                           .neighbours = D == 2 ? 30.0 : 60.0,
+                           .neighbours = s.neighbours,
                            .particles = static_cast<long long>(s.p.size()),
                            .extra = extra + "; rms |error| over all components"});
   const int axis = op == Operator::curl_curl ? 1 : 0;
@@ -100,7 +100,7 @@ void compression_figure(const app::Chapter& chapter, const StaticSet<D>& s,
             "D settled set): Brookshaw's Laplacian is not the curl curl");
   fig.stamp(plot::Stamp{.scheme = "constant h, gather density",
                         .kernel = "M4",
-                        .neighbours = D == 2 ? 30.0 : 60.0,
+                        .neighbours = s.neighbours,
                         .particles = static_cast<long long>(s.p.size()),
                         .extra = "\\nabla(\\nabla\\cdot v) = (-4\\pi^2 sin 2\\pi x, 0, 0), "
                                  "\\nabla\\times\\nabla\\times v = 0"});
@@ -148,14 +148,17 @@ void compression_figure(const app::Chapter& chapter, const StaticSet<D>& s,
 /// The errors of every method against the velocity noise, 2D (\p n2) and 3D (\p n3) side by
 /// side, log-log, with a line of slope one: `noise.png`.
 inline void noise_figure(const app::Chapter& chapter, const NoiseStudy<2>& n2,
-                         const NoiseStudy<3>& n3, int particles) {
+                         const NoiseStudy<3>& n3, int particles, double neighbours_2d,
+                         double neighbours_3d) {
   plot::Figure figure(1, 2, {.width = 1600, .height = 700});
   figure.title("Errors against the velocity noise, settled sets, v_x = sin 2\\pi y");
   figure.stamp(plot::Stamp{.scheme = "constant h, gather density",
                            .kernel = "M4",
                            .particles = particles,
                            .extra = "uniform noise in [-\\epsilon, \\epsilon] on each velocity "
-                                    "component, mean of 3 draws; 2D: 30 neighbours, 3D: 60"});
+                                    "component, mean of 3 draws; 2D: " +
+                                    format("%g", neighbours_2d) +
+                                    " neighbours, 3D: " + format("%g", neighbours_3d)});
   auto draw = [&](plot::Axes& ax, const auto& study, const std::string& title) {
     ax.xscale(plot::Scale::log).yscale(plot::Scale::log);
     ax.xlabel("noise amplitude \\epsilon")
@@ -181,7 +184,8 @@ inline void noise_figure(const app::Chapter& chapter, const NoiseStudy<2>& n2,
 /// The errors of every method against the density scatter of the set, 2D (\p d2) and 3D
 /// (\p d3) side by side, with the paper's two sets marked: `disorder.png`.
 inline void disorder_figure(const app::Chapter& chapter, const DisorderStudy<2>& d2,
-                            const DisorderStudy<3>& d3, int particles) {
+                            const DisorderStudy<3>& d3, int particles, double neighbours_2d,
+                            double neighbours_3d) {
   plot::Figure figure(1, 2, {.width = 1600, .height = 700});
   figure.title("Errors against the particles' disorder, v_x = sin 2\\pi y");
   figure.stamp(plot::Stamp{.scheme = "constant h, gather density",
@@ -189,7 +193,9 @@ inline void disorder_figure(const app::Chapter& chapter, const DisorderStudy<2>&
                            .particles = particles,
                            .extra = "glass moved by random offsets up to 2 spacings, then the "
                                     "Poisson set; densities with the self term, except the open "
-                                    "markers (Fig 3's set without it); 2D: 30 neighbours, 3D: 60"});
+                                    "markers (Fig 3's set without it); 2D: " +
+                                    format("%g", neighbours_2d) +
+                                    " neighbours, 3D: " + format("%g", neighbours_3d)});
   /// Each panel draws a curve per method through the disturbed glasses to the Poisson set, and
   /// the Poisson set as Fig 3 sums it, without the self term, as an open marker off the curve.
   /// On the 3D panel two vertical lines mark the density scatter of Watkins' own two sets.

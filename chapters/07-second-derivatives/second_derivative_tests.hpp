@@ -153,13 +153,20 @@ struct StaticSet {
   sph::NeighbourSearch<D> search;
   bool self_term = true;
   sph::DensityScatter scatter;  ///< mean and scatter of the densities
+  double neighbours = 0;        ///< the mean neighbour number its h gives, n (2h)^D V_D
 
-  /// Searches the neighbours of \p particles and sums their densities.
+  /// Searches the neighbours of \p particles and sums their densities.  The neighbour number
+  /// the figures' stamps give is the one the particles' (constant) h implies in the unit box,
+  /// so that a stamp says what ran, whatever option chose it.
   StaticSet(std::string name, sph::Particles<D> particles, bool with_self_term)
       : label(std::move(name)), p(std::move(particles)), self_term(with_self_term) {
     search.update(p, sph::setups::unit_box<D>(), sph::SmoothingLengthRule::fixed());
     sph::compute_density<D>(p, search.list(), sph::DensityForm::watkins(self_term));
     scatter = sph::density_scatter(p.density);
+    const double support = 2 * p.smoothing_length[0];
+    const double ball = D == 2 ? std::numbers::pi * support * support
+                               : 4.0 / 3.0 * std::numbers::pi * support * support * support;
+    neighbours = std::round(10 * static_cast<double>(p.size()) * ball) / 10;
   }
   /// The frozen set the operators read.
   dv::ParticleSet<D> view() const { return {p, search.list(), sph::setups::unit_box<D>()}; }

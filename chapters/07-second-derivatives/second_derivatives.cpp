@@ -1052,7 +1052,7 @@ int main(int argc, char** argv) {
     std::printf("\nStep 4: a noisy velocity (Watkins Fig 2)\n");
     const NoiseStudy<2> noise2 = fig2(chapter, par, sets2);
     const NoiseStudy<3> noise3 = fig2(chapter, par, sets3);
-    noise_figure(chapter, noise2, noise3, par.particles);
+    noise_figure(chapter, noise2, noise3, par.particles, par.neighbours_2d, par.neighbours_3d);
     std::printf("\nStep 5: the random set (Watkins Fig 3)\n");
     fig3(chapter, par, sets2);
     const RandomStudy<3> random3 = fig3(chapter, par, sets3);
@@ -1062,7 +1062,8 @@ int main(int argc, char** argv) {
     std::printf("\nStep 7: errors against disorder\n");
     const DisorderStudy<2> disorder2 = disorder(par, sets2);
     const DisorderStudy<3> disorder3 = disorder(par, sets3);
-    disorder_figure(chapter, disorder2, disorder3, par.particles);
+    disorder_figure(chapter, disorder2, disorder3, par.particles, par.neighbours_2d,
+                    par.neighbours_3d);
     std::printf("\nStep 8: error against N, neighbours and run time\n");
     const CostStudy cost_study = cost(par, sets3);
     cost_figure(chapter, cost_study);
