@@ -27,6 +27,40 @@ namespace app {
 
 namespace {
 
+/// A command-line error in the chapters' one voice, "--option: what is wrong": CLI11's own
+/// words for a missing value ("1 required INT:in [2, 20000] missing"), a repeated option ("At
+/// Most 1 required but received 2"), a value it cannot convert and a stray argument are
+/// rewritten; every other message (the validators' own) is already in that voice.
+std::string in_our_words(const CLI::Error& error) {
+  const std::string what = error.what();
+  const auto colon = what.find(": ");
+  const std::string option = colon == std::string::npos ? "" : what.substr(0, colon);
+  if (dynamic_cast<const CLI::ArgumentMismatch*>(&error) != nullptr && !option.empty()) {
+    if (what.find(" missing") != std::string::npos) {
+      return option + ": needs a value (--help gives its type and range)";
+    }
+    const auto received = what.find("received ");
+    if (what.find("At Most") != std::string::npos && received != std::string::npos) {
+      return option + ": given " + what.substr(received + 9) + " times; give it once";
+    }
+  }
+  if (dynamic_cast<const CLI::ConversionError*>(&error) != nullptr) {
+    static const std::string prefix = "Could not convert: ";
+    const auto equals = what.find(" = ");
+    if (what.rfind(prefix, 0) == 0 && equals != std::string::npos) {
+      return what.substr(prefix.size(), equals - prefix.size()) + ": cannot read '" +
+             what.substr(equals + 3) + "' as a value of this option";
+    }
+  }
+  if (dynamic_cast<const CLI::ExtrasError*>(&error) != nullptr) {
+    const auto extra = what.find("expected: ");
+    const std::string args = extra == std::string::npos ? what : what.substr(extra + 10);
+    return "unexpected argument " + args +
+           ": every parameter is named, as --name value (--help lists them)";
+  }
+  return what;
+}
+
 /// Help in two columns: the option with its type, then what it is, its default and its range:
 ///   --gamma FLOAT              adiabatic index (default 1.4; > 1)
 class HelpFormatter : public CLI::Formatter {
@@ -82,6 +116,7 @@ Chapter::Chapter(std::string name, std::string title, int argc, char** argv)
   // runtime fail (a crash or a bare abort): the range is bounded, and --help says by what.
   cli_.add_option("--threads", threads_, "OpenMP threads; 0 uses every core")
       ->capture_default_str()
+      ->transform(whole_number())
       ->check(between(0, max_threads()))
       ->group("Run options");
   cli_.get_help_ptr()->group("Run options");
@@ -89,7 +124,7 @@ Chapter::Chapter(std::string name, std::string title, int argc, char** argv)
 
   // Errors read "ch: error: --gamma: must be greater than 1, got 0.5".
   cli_.failure_message([name = name_](const CLI::App* app, const CLI::Error& error) {
-    std::string message = name + ": error: " + error.what() + "\n";
+    std::string message = name + ": error: " + in_our_words(error) + "\n";
     if (app->get_help_ptr() != nullptr) {
       message += "Run with " + app->get_help_ptr()->get_name() + " for more information.\n";
     }

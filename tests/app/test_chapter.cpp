@@ -133,12 +133,31 @@ TEST_CASE("an impossible value is an error naming the option and the problem", "
   SECTION("a missing value") {
     const Parsed result = parse({"ch99", "--gamma"});
     CHECK(result.code > 0);
-    CHECK(result.err.find("--gamma") != std::string::npos);
+    CHECK(result.err.find("--gamma: needs a value") != std::string::npos);
   }
   SECTION("a negative thread count") {
     const Parsed result = parse({"ch99", "--threads", "-2"});
     CHECK(result.code > 0);
     CHECK(result.err.find("--threads") != std::string::npos);
+  }
+  // The messages below were CLI11's own ("Could not convert: --threads = 2.5", "At Most 1
+  // required but received 2", "The following argument was not expected"): every option error
+  // now reads "--option: what is wrong".
+  SECTION("a fraction of a thread") {
+    const Parsed result = parse({"ch99", "--threads", "2.5"});
+    CHECK(result.code > 0);
+    CHECK(result.err.find("--threads: must be a whole number, got 2.5") != std::string::npos);
+  }
+  SECTION("an option given twice") {
+    const Parsed result = parse({"ch99", "--gamma", "1.4", "--gamma", "1.6"});
+    CHECK(result.code > 0);
+    CHECK(result.err.find("--gamma: given 2 times; give it once") != std::string::npos);
+  }
+  SECTION("an argument without a name") {
+    const Parsed result = parse({"ch99", "1.4"});
+    CHECK(result.code > 0);
+    CHECK(result.err.find("unexpected argument 1.4: every parameter is named") !=
+          std::string::npos);
   }
 }
 
