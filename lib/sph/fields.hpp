@@ -91,6 +91,7 @@ struct ParticleView {
   const double* density_rate = nullptr;
   const double* divergence = nullptr;
   std::array<const double*, curl_components<D>> curl{};
+  const ParticleKind* kind = nullptr;  ///< fluid or fixed boundary particle (read by walls)
 
   /// Component a of v_i - v_j.
   double v_ij(int a, std::size_t i, std::size_t j) const { return v[a][i] - v[a][j]; }

@@ -343,6 +343,7 @@ class Simulation {
     v.density_rate = fields_.density_rate.data();
     v.divergence = fields_.velocity_divergence.data();
     for (int a = 0; a < curl_components<D>; ++a) v.curl[a] = fields_.velocity_curl[a].data();
+    v.kind = p.kind.data();
     return v;
   }
   /// The potential energy in the external potential and in self-gravity.

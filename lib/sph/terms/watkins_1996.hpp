@@ -33,6 +33,15 @@
 /// accuracy of Figs 1-3 (no zeroth-order error); chapter 7 measures it on static fields, and the
 /// flows of the next chapter measure the drift.
 ///
+/// **Walls** (Watkins et al. sect. 4.1.1).  Fixed boundary particles have no velocity of their
+/// own worth differencing: a fluid particle beside a wall at rest would see a jump from its
+/// speed to zero across one smoothing length and its derivatives would be wrong there.  So the
+/// walls lend each fluid neighbour i a *pseudo-velocity* extrapolated from i's own along the
+/// flow's profile, and a *pseudo-curl* for the second pass (a Walls policy, ParabolicWalls for
+/// the plane channel).  It differs for each particle that looks at the wall, so it is applied
+/// inside the pair functions, never stored on the wall particle.  NoWalls, the default, costs
+/// nothing.
+///
 /// **Time step.**  An explicit viscous step is stable for
 /// \f$ \delta t < C h^2/\nu \f$ (\f$ \nu = \mu/\rho \f$); the term brings the limit
 /// \f$ 0.125\, h_i^2 \rho_i / (\mu_b + \tfrac43\mu_s) \f$, the constant Morris, Fox & Zhu (1997)
@@ -43,12 +52,15 @@
 /// (\f$ \hat W \to 0 \f$).
 
 #include "sph/derivatives/particle_set.hpp"
+#include "sph/error.hpp"
 #include "sph/fields.hpp"
 #include "sph/kernel.hpp"
 #include "sph/pair.hpp"
+#include "sph/particles.hpp"
 #include "sph/terms.hpp"
 
 #include <algorithm>
+#include <cmath>
 #include <cstdio>
 #include <limits>
 #include <string>
@@ -103,10 +115,64 @@ struct ParticleViscosity {
   }
 };
 
+/// No walls: a neighbour's velocity, curl and divergence are its own.
+struct NoWalls {
+  static constexpr bool active = false;
+};
+
+/// Plane walls at \f$ y = c \pm a \f$ (y the coordinate \p axis), with the flow between them
+/// parabolic near the walls, as in Poiseuille flow: \f$ v_x = K(a^2 - y^2) \f$, \f$ v_y = 0 \f$
+/// (eq 16, y measured from the centre c).  A fixed particle j seen from a fluid particle i
+/// lends it
+///  - the velocity of that parabola through i (eq 17):
+///    \f$ [v_x]_j = [v_x]_i\,(a^2 - y_j^2)/(a^2 - y_i^2) \f$ for every component along the
+///    walls, and 0 across them -- zero at the wall (no slip), and of the other sign beyond it;
+///  - the parabola's curl, linear in y (eq 19): \f$ (\nabla\times\mathbf v)_j =
+///    (y_j/y_i)(\nabla\times\mathbf v)_i \f$.  (The printed eq 18 gives the curl as
+///    \f$ -2Ky \f$; for \f$ v_x = K(a^2-y^2) \f$ it is \f$ \partial_x v_y - \partial_y v_x =
+///    +2Ky \f$.  Eq 19 takes a ratio, so the sign does not enter.)
+///  - for the divergence, which Watkins et al. do not extrapolate, i's own: the wall adds
+///    nothing to the grad-div part (their flow has \f$ \nabla\cdot\mathbf v = 0 \f$).
+/// A fluid particle at or beyond a wall (eq 17 divides by \f$ a^2 - y_i^2 \f$), or one on the
+/// centre line that sees a wall (eq 19 divides by \f$ y_i \f$), has no pseudo-velocity: the
+/// factors are then NaN, and the step's check of the forces stops the run naming the particle
+/// and where it is.  (The pair functions run on many threads at once, where an exception
+/// cannot be thrown; the check runs after them.)
+template <int D>
+struct ParabolicWalls {
+  static constexpr bool active = true;
+  int axis = D - 1;       ///< the coordinate across the walls (y in 2D)
+  double centre = 0;      ///< c, the centre line
+  double half_width = 1;  ///< a, the distance of each wall from the centre line
+
+  ParabolicWalls() = default;
+  ParabolicWalls(double c, double a, int across = D - 1) : axis(across), centre(c), half_width(a) {
+    require(across >= 0 && across < D, "parabolic walls: the axis must be one of the box's");
+    require(std::isfinite(c), "parabolic walls: the centre must be finite");
+    require(std::isfinite(a) && a > 0,
+            "parabolic walls: the half-width must be positive (got " + show(a) + ")");
+  }
+
+  /// y of particle k, from the centre line.
+  double y(std::size_t k, const ParticleView<D>& in) const { return in.x.x[axis][k] - centre; }
+  /// Eq 17: the factor by which the components of \f$ \mathbf v_i \f$ along the walls are
+  /// lent to wall particle j.
+  double velocity_factor(std::size_t i, std::size_t j, const ParticleView<D>& in) const {
+    const double yi = y(i, in), yj = y(j, in), a2 = half_width * half_width;
+    if (!(std::abs(yi) < half_width)) return std::numeric_limits<double>::quiet_NaN();
+    return (a2 - yj * yj) / (a2 - yi * yi);
+  }
+  /// Eq 19: the factor by which \f$ (\nabla\times\mathbf v)_i \f$ is lent to wall particle j.
+  double curl_factor(std::size_t i, std::size_t j, const ParticleView<D>& in) const {
+    const double yi = y(i, in);
+    return yi != 0 ? y(j, in) / yi : std::numeric_limits<double>::quiet_NaN();
+  }
+};
+
 /// The term: Watkins et al.'s Navier-Stokes viscosity in D = 2 or 3 dimensions (the curl needs
 /// a plane), with coefficients of type Mu (ConstantViscosity, KinematicViscosity,
 /// ParticleViscosity).
-template <int D, class K = Kernel<D>, class Mu = ConstantViscosity>
+template <int D, class K = Kernel<D>, class Mu = ConstantViscosity, class Walls = NoWalls>
 class WatkinsViscosity {
   static_assert(D == 2 || D == 3, "WatkinsViscosity: the curl-curl operator needs 2D or 3D");
   using Mat = derivatives::Mat<D>;
@@ -114,9 +180,11 @@ class WatkinsViscosity {
 
  public:
   Mu mu{};
+  Walls walls{};
 
   WatkinsViscosity() = default;
   explicit WatkinsViscosity(Mu coefficients) : mu(std::move(coefficients)) {}
+  WatkinsViscosity(Mu coefficients, Walls w) : mu(std::move(coefficients)), walls(std::move(w)) {}
 
   std::string describe() const {
     char s[160];
@@ -161,6 +229,15 @@ class WatkinsViscosity {
     volume[i] = in.m[i] * inverse_density[i];
   }
 
+  /// Whether j is a wall particle seen by fluid particle i (never, without walls).
+  bool sees_wall(std::size_t i, std::size_t j, const ParticleView<D>& in) const {
+    if constexpr (Walls::active) {
+      return in.kind[j] != ParticleKind::fluid && in.kind[i] == ParticleKind::fluid;
+    } else {
+      return false;
+    }
+  }
+
   /// What the gradient pass sums for particle i: the velocity gradient (eqs 4 and 6, the
   /// neighbour's volume as weight) and, for varying coefficients, their gradients (eq 7).
   template <int Dim>
@@ -170,8 +247,17 @@ class WatkinsViscosity {
   };
   void gradient_pair(GradientSum<D>& sum, const Pair<D>& p, const ParticleView<D>& in) const {
     const double g = volume[p.j] * p.gradient_factor;  // V_j grad_i W_ij = g r_ij
+    double v_ij[D];
+    for (int a = 0; a < D; ++a) v_ij[a] = p.v_ij[a];
+    if constexpr (Walls::active) {
+      if (sees_wall(p.i, p.j, in)) {
+        // eq 17: the wall's pseudo-velocity, f v_i along the walls and 0 across them
+        const double f = walls.velocity_factor(p.i, p.j, in);
+        for (int a = 0; a < D; ++a) v_ij[a] = in.v[a][p.i] * (a == walls.axis ? 1.0 : 1.0 - f);
+      }
+    }
     for (int a = 0; a < D; ++a)
-      for (int b = 0; b < D; ++b) sum.J[a][b] -= g * p.v_ij[a] * p.r_ij[b];  // (v_j - v_i) x grad
+      for (int b = 0; b < D; ++b) sum.J[a][b] -= g * v_ij[a] * p.r_ij[b];  // (v_j - v_i) x grad
     if constexpr (Mu::varies) {
       const double ds = mu.shear_at(p.j, in) - mu.shear_at(p.i, in);
       const double db = mu.bulk_at(p.j, in) - mu.bulk_at(p.i, in);
@@ -216,15 +302,25 @@ class WatkinsViscosity {
     const std::size_t i = p.i, j = p.j;
     const double g = volume[j] * inverse_density[i] * p.gradient_factor;  // V_j grad W / rho_i
     const double shear_i = mu.shear_at(i, in);
+    // A wall lends i the curl of eq 19 and i's own divergence; other particles their own.
+    double curl_j[3] = {curl[j][0], curl[j][1], curl[j][2]};
+    double divergence_j = divergence[j];
+    if constexpr (Walls::active) {
+      if (sees_wall(i, j, in)) {
+        const double f = walls.curl_factor(i, j, in);  // (NaN: see ParabolicWalls)
+        for (int c = 0; c < 3; ++c) curl_j[c] = f * curl[i][c];
+        divergence_j = divergence[i];
+      }
+    }
     // -mu_s (w_i - w_j) x grad W
     double cc[3] = {0, 0, 0};
     if constexpr (D == 2) {
-      const double dw = curl[i][0] - curl[j][0];
+      const double dw = curl[i][0] - curl_j[0];
       cc[0] = -dw * p.r_ij[1];  // (0, 0, dw) x (rx, ry, 0) = (-dw ry, dw rx)
       cc[1] = dw * p.r_ij[0];
     } else {
-      const double d0 = curl[i][0] - curl[j][0], d1 = curl[i][1] - curl[j][1],
-                   d2 = curl[i][2] - curl[j][2];
+      const double d0 = curl[i][0] - curl_j[0], d1 = curl[i][1] - curl_j[1],
+                   d2 = curl[i][2] - curl_j[2];
       cc[0] = d1 * p.r_ij[2] - d2 * p.r_ij[1];
       cc[1] = d2 * p.r_ij[0] - d0 * p.r_ij[2];
       cc[2] = d0 * p.r_ij[1] - d1 * p.r_ij[0];
@@ -232,10 +328,10 @@ class WatkinsViscosity {
     // the grad-div part: (mu_b + 2 mu_s) (D_j - D_i) - 2/3 (mu_s,j D_j - mu_s,i D_i)
     double gd;
     if constexpr (Mu::varies) {
-      gd = (mu.bulk_at(i, in) + 2 * shear_i) * (divergence[j] - divergence[i]) -
-           2.0 / 3.0 * (mu.shear_at(j, in) * divergence[j] - shear_i * divergence[i]);
+      gd = (mu.bulk_at(i, in) + 2 * shear_i) * (divergence_j - divergence[i]) -
+           2.0 / 3.0 * (mu.shear_at(j, in) * divergence_j - shear_i * divergence[i]);
     } else {
-      gd = (mu.bulk + 4.0 / 3.0 * mu.shear) * (divergence[j] - divergence[i]);
+      gd = (mu.bulk + 4.0 / 3.0 * mu.shear) * (divergence_j - divergence[i]);
     }
     PairAcceleration out;
     for (int a = 0; a < D; ++a) out.a[a] = g * (-shear_i * cc[a] + gd * p.r_ij[a]);
