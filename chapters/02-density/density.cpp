@@ -192,11 +192,12 @@ double random_scatter_theory(int n, double h) {
   return std::sqrt((n - 1) * m * m * (integral - 1.0));
 }
 
-/// Every draw goes through `app::timed_density_step`, the first function of the file
-/// density_timing.hpp, which we show here where the program first calls it.  The rest of the
-/// file is the machinery of Step 7's cost study -- a guard that holds OpenMP to one thread, a
-/// record of runs with what their glasses cost to build, and the sweep over lattices and
-/// glasses -- and Step 7 comes back to it.
+/// Every draw runs its density step through `app::timed_density_step`, the first function of
+/// density_timing.hpp, shown here at its first call (Step 2 has no use for the time it
+/// returns).  The rest of the file serves Step 7's cost study -- a guard that holds OpenMP to
+/// one thread, the record of the runs and of what their glasses cost to build, the timing of
+/// one set as the best of three runs, and the sweep over lattices and glasses -- and Step 7
+/// comes back to it.
 ///
 /// \show_file density_timing.hpp
 ///
@@ -235,9 +236,9 @@ RandomSets step2_random(app::Chapter& chapter, const Setup& s) {
     app::timed_density_step(p, unit_box<3>(), sph::DensityForm::watkins(true));
     mean_with_self = sph::density_scatter(p.density).mean;
   }
-  /// After the draws each column becomes an average and a spread, which the table sets beside
-  /// the paper and the theory.  The theory needs only N and h, and h is the same in every draw:
-  /// eq A6 sets it from N and the neighbour number alone, so the first draw's h stands for all.
+  /// The table sets the averages and spreads beside the paper and the theory.  The theory needs
+  /// only N and h, and h is the same in every draw: eq A6 sets it from N and the neighbour
+  /// number alone, so the first draw's h stands for all.
   const app::SampleStatistics mean_stats = app::sample_statistics(means),
                               sigma_stats = app::sample_statistics(sigmas);
   const double h = result.first.smoothing_length[0], mass = result.first.mass[0];
@@ -260,8 +261,6 @@ RandomSets step2_random(app::Chapter& chapter, const Setup& s) {
       "averages\n\n",
       (1.013 - mean_stats.mean) / mean_stats.spread,
       (0.281 - sigma_stats.mean) / sigma_stats.spread);
-  /// The checks compare our averages, which more draws make more certain; the paper's single
-  /// draw is only judged against the spread of one draw, as in the last printed line.
   chapter.check(
       std::abs(mean_stats.mean - expected_mean) < 4 * mean_stats.spread / std::sqrt(s.draws) + 1e-3,
       "random sets: average mean density " + app::format("%.4f", mean_stats.mean) +
@@ -349,9 +348,9 @@ Settled settle(const sph::Particles<3>& start, double gamma) {
   return s;
 }
 
-/// The step runs the three relaxations and prints one row for each, under the paper's numbers.
-/// The checks on the scatter and the closest pair apply to every exponent, the one on the mean
-/// only to \f$ \gamma = 2 \f$: `settled[1]`, the glass that the later steps take over.
+/// The step returns the three settled sets in the order of \f$ \gamma \f$.  The second,
+/// `settled[1]`, is the \f$ \gamma = 2 \f$ glass: only its mean density is checked, and it is
+/// the set that the figure draws and Steps 5 and 6 take over.
 
 std::vector<Settled> step3_settled(app::Chapter& chapter, const RandomSets& random) {
   std::printf("Step 3: the first random set settled to uniform density (Watkins Fig. 1a)\n");
@@ -755,8 +754,8 @@ struct RuleResult {
 };
 
 /// `apply_rule` takes the set by value, so that every rule starts from the same positions and
-/// the same h, and times the search under its rule together with one density pass.  The counts
-/// and the spread of h are the measures of uniform_set_measures.hpp (shown in Step 3).
+/// the same h; the counts and the spread of h it reports are measures of uniform_set_measures.hpp
+/// (shown in Step 3).
 
 RuleResult apply_rule(sph::Particles<3> p, const std::string& name,
                       const sph::SmoothingLengthRule& rule, double neighbours) {
@@ -780,9 +779,9 @@ RuleResult apply_rule(sph::Particles<3> p, const std::string& name,
   return r;
 }
 
-/// The step applies the three rules to both sets and prints one table.  Only the two adaptive
-/// rules make a promise, so only they are checked: `results[1]` is the neighbour-number rule,
-/// `results[2]` the density rule.
+/// For each set the three rules run in the order of the table, so `results[1]` is the
+/// neighbour-number rule and `results[2]` the density rule, the two that are checked; the fixed
+/// h promises nothing.
 
 void step6_rules(app::Chapter& chapter, const Setup& s, const Settled& glass,
                  const RandomSets& random) {

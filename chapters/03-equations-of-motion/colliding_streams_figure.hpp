@@ -79,8 +79,8 @@ void save_colliding_streams_figure(const std::vector<const StreamsRun<D>*>& runs
                   .extra = options.smoothing + format("; every %dth particle drawn", stride)});
   for (int k = 0; k < 3; ++k) draw_stream_paths(figure.panel(k), *runs[k], options.t_end);
   figure.panel(1).legend(plot::Corner::upper_right);
-  /// The density panel draws each run's particles as dots over the exact profile, sampled
-  /// densely enough that its two shocks appear as sharp steps.
+  /// The density panel draws the particles of each run in `densities` as dots against the
+  /// exact profile, sampled finely enough that its two shocks appear as sharp steps.
   // Panel (d): the final densities, and the exact solution.
   plot::Axes& density = figure.panel(3);
   const auto exact = sph::make_colliding_streams<D>(setup).exact;

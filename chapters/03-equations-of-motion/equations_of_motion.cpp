@@ -204,9 +204,10 @@
 /// colliding-stream set-up `lib/sph/setups/colliding_streams.hpp`, the penetration diagnostic
 /// `lib/sph/measures/penetration.hpp`, and two runners that build a scene, integrate it and keep
 /// what we measure, `lib/app/shock_tube_run.hpp` (which chapter 4 shares) and
-/// `lib/app/colliding_streams_run.hpp`.  Two files of the chapter's own draw its figures'
-/// additions, and this page shows them where a step first uses them: `figure_lines.hpp` at the end
-/// of Step 5, and `colliding_streams_figure.hpp` at the end of Step 6.
+/// `lib/app/colliding_streams_run.hpp`.  Two files of the chapter's own help draw its figures,
+/// and this page shows each where a step first uses it: `figure_lines.hpp`, lines added to a
+/// finished figure, at the end of Step 5, and `colliding_streams_figure.hpp`, the figure of
+/// Step 6, at the end of that step.
 ///
 /// The steps hand their results on.  Step 1 makes the three runs of Sod's tube and returns
 /// them; Steps 2 to 5 only look at those runs, each from its own angle, and return what they
@@ -344,8 +345,8 @@ struct Parameters {
 
   sph::MonaghanGingold1983 viscosity() const { return {alpha, beta}; }
   /// The viscous runs' name in tables, legends and titles: the paper's viscosity, or the
-  /// coefficients that ran (with `--alpha 0 --beta 0` no viscosity acts, and no label says
-  /// otherwise).
+  /// coefficients that ran, so that a run with other values (`--alpha 0 --beta 0`: no viscosity
+  /// at all) is never labelled as Monaghan-Gingold's.
   std::string viscous_name() const {
     return alpha == 1 && beta == 2 ? "Monaghan-Gingold AV"
                                    : format("AV alpha %g, beta %g", alpha, beta);
@@ -356,12 +357,12 @@ struct Parameters {
   }
 };
 
-/// `declare_parameters` gives each option its default, its `--quick` default where it has one,
-/// and its range.  A count such as `--cells` is checked with app::count_between, which refuses
-/// a value too large with the memory it would need.  The first options fix the resolution of
-/// the tube.  Whether Step 3's post-shock window holds any particle depends on both `--cells`
-/// and `--neighbours`, so a condition that the program checks after reading all options ties
-/// the two together.
+/// `declare_parameters` binds each option to its member of `Parameters`, whose initial value is
+/// the default, and adds the `--quick` default where there is one and the range.  A count such
+/// as `--cells` is checked with app::count_between, which refuses a value too large with the
+/// memory it would need.  The first two options fix the tube's resolution and smoothing
+/// length.  Whether Step 3's post-shock window holds any particle depends on both, so a
+/// condition that the program checks after reading all options ties the two together.
 void declare_parameters(app::Chapter& chapter, Parameters& par) {
   // (coarser than 300, the post-shock window holds no particle; the tube holds 1.125 cells
   // particles per unit length, two units long, and its cost grows as cells^2)
@@ -665,9 +666,9 @@ struct StarRegion {
 };
 
 /// `StarRegion` keeps the window with the measurements, so that Step 5 can mark it in the
-/// figure of the inviscid run.  The pressure loop covers the whole star region, from the
-/// rarefaction's tail to the shock; the velocity and energy sums cover only the shocked gas
-/// between the contact and the shock, where the exact solution is a single constant state.
+/// figure of the inviscid run.  Both samples keep the margin from the waves: the pressures are
+/// taken from the rarefaction's tail to the shock, the velocities and energies only in the
+/// shocked gas between the contact and the shock, where the exact state is a single constant.
 template <int D>
 StarRegion star_region(const app::TubeRun<D>& run, const SodScene& scene) {
   static_assert(D == 1, "the post-shock smoothing length below is the 1D rule");
@@ -944,11 +945,9 @@ void step5_figures(const app::Chapter& chapter, const SodRuns& runs, const StarT
   figure.save_png(chapter.figure_path("sod_as_printed.png").string());
 }
 
-/// The prediction's dashed lines come from the file `figure_lines.hpp`.  It holds two small
-/// functions that draw into a figure already made: app::add_exact_lines, used just above, which
-/// samples a Riemann solution across the window and adds its four profiles to the four panels;
-/// and app::add_slope_guide, which Step 7 uses to lay a guide line of a given slope on its
-/// error figure.
+/// `figure_lines.hpp` holds two small functions that draw into a figure already made:
+/// app::add_exact_lines, which drew the prediction's dashed lines just above, and
+/// app::add_slope_guide, with which Step 7 lays a line of a given slope on its error figure.
 ///
 /// \show_file figure_lines.hpp
 ///
@@ -1124,10 +1123,10 @@ StreamRuns<dim> step6_colliding_streams(const app::Chapter& chapter, const Param
   return s;
 }
 
-/// The figure is drawn by the file `colliding_streams_figure.hpp`.  It reads the paths and the
-/// times that app::run_colliding_streams recorded and draws one x-t diagram per run; for panel
-/// (d) it samples the exact solution of the set-up itself, from sph::make_colliding_streams,
-/// so that the figure needs nothing from the step but the runs.
+/// `colliding_streams_figure.hpp` draws an x-t diagram from the paths and times that
+/// app::run_colliding_streams recorded for a run; for panel (d) it builds the exact solution
+/// from the set-up itself with sph::make_colliding_streams, so the step hands it only the runs,
+/// the set-up and the labels.
 ///
 /// \show_file colliding_streams_figure.hpp
 ///
@@ -1303,8 +1302,9 @@ void check_claims(app::Chapter& chapter, const Findings& f) {
     chapter.check(run->energy_change < 2e-3, format("%s: energy changed by %.2e (> 2e-3)",
                                                     run->name.c_str(), run->energy_change));
   }
-  /// Claims 2 to 4 compare the inviscid run with Sod's exact solution and with the viscous run:
-  /// the fronts of Step 4, the post-shock gas of Step 3, and the density errors of Step 2.
+  /// Claims 2 to 4 set the inviscid and the viscous run against Sod's exact solution and
+  /// against each other: the fronts of Step 4, the post-shock gas of Step 3, and the density
+  /// errors of Step 2.
   const Fronts &sod = f.fronts.sod_gas, &inviscid = f.fronts.inviscid, &printed = f.fronts.printed;
   const StarRegion &star = f.star.inviscid, &viscous = f.star.viscous;
   const sph::RiemannSolution& exact = f.sod.inviscid.exact;

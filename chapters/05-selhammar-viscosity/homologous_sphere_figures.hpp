@@ -112,7 +112,7 @@ inline void save_sphere_density_figure(const std::vector<SphereRun>& runs,
     ax.scatter(r, rho, {.label = "SPH particles", .color = plot::black, .size = 2.0});
     /// On the common scale the estimate is drawn as what eq 26 assumes, a uniform sphere of
     /// radius \f$ R' \f$ -- a step in \f$ \rho(r) \f$ -- beside the reference; a panel on its
-    /// own scale gets a note of how far off the estimate is instead.
+    /// own scale gets a note giving the estimate's density instead.
     if (compact(run)) {
       // The estimate as a uniform sphere, and the reference at the same time.
       ax.line(std::vector<double>{0, r_estimate, r_estimate, 3 * r_estimate},

@@ -611,8 +611,8 @@ std::pair<double, double> vnr_fraction_on_sphere(const Parameters& par, sph::Com
 /// same particles and the same free ends.
 ///
 /// Step 2 is the first of three steps that run the weak tube, so this is where the tube's code
-/// comes in, the file weak_tube_run.hpp: the run and the reference that every tube of the
-/// chapter goes through, and the measures that the tables of Steps 2, 3 and 6 print.
+/// comes in, the file weak_tube_run.hpp: the run and the reference that every weak tube of
+/// the chapter goes through, and the measures that the tables of Steps 2, 3 and 6 print.
 /// \show_file weak_tube_run.hpp
 ///
 /// Step 2 keeps what the checks need: the two censuses, and the kinetic energies of the
@@ -639,9 +639,9 @@ Readings step2_readings(const Parameters& par) {
   std::printf("    %-22s %9.1f%% %13.1f%%\n", "as printed", 100 * r.census_printed.first,
               100 * r.census_printed.second);
 
-  /// Then the tubes, at n = 8.  Each reading is a copy of the chapter's parameters with its
-  /// switches set here; the runs without viscosity and with the standard one come first, the
-  /// yardsticks by which the readings are judged.
+  /// Then the tubes.  Each reading is a copy of the chapter's parameters with its switches set
+  /// here.  The standard viscosity's run is the yardstick the readings are judged by; the run
+  /// without viscosity shows how far the mean-velocity reading is from no viscosity at all.
   sph::WeakTubeSetup setup;
   setup.cells = 8;
   setup.printed_densities = par.printed_densities;
@@ -779,9 +779,9 @@ WeakTube step3_weak_tube(const app::Chapter& chapter, const Parameters& par) {
       "  the reference: 4000 Lagrangian zones, free ends, from z = %.2f to %.2f at t = 20;\n"
       "  the Riemann solution is more than 1 %% off its density in %.0f %% of the mass\n",
       ref.node_radius.front(), ref.node_radius.back(), 100 * result.riemann_departure);
-  /// The three runs.  Only the modified one is given something to do at the pauses:
-  /// activity_at_pauses() takes its census at t = 10 and 20, while the other two run straight
-  /// through.  Then the table, each run's errors over all particles and in the window.
+  /// The three runs go into result.runs in a fixed order -- standard, modified, switch --
+  /// which the figures below and Step 6 rely on.  Only the modified run is handed a callable
+  /// for the pauses; the other two pause with nothing to do.
   result.runs.push_back(
       app::run_weak_tube<Standard<3>>("standard", setup, {{}, par.standard()}, par.settings()));
   result.runs.push_back(app::run_weak_tube<Modified<3>>(
@@ -809,8 +809,9 @@ WeakTube step3_weak_tube(const app::Chapter& chapter, const Parameters& par) {
       "  moving particles\n",
       100 * modified.vnr_on[0], 100 * modified.vnr_on[1], 100 * modified.collective_on[0],
       100 * modified.collective_on[1]);
-  /// Last, the figures, one per viscosity, each drawn against the same reference and the same
-  /// Riemann solution, so that the three can be laid side by side panel by panel.
+  /// Last, the figures, one per viscosity, each against the same reference and Riemann
+  /// solution.  Each panel takes its scale from its own run, so compare the scatter about the
+  /// red line, not the axes, from one figure to the next.
   const auto figure = [&](int k, const char* file, const char* title) {
     app::save_weak_tube_figure(result.runs[k], ref, riemann, 20.0,
                                chapter.figure_path(file).string(), title);
@@ -970,8 +971,8 @@ auto census_probe(SphereCensus& census) {
 /// a probe after every step, which is how census_probe() above follows the restricted term.
 /// \show_file homologous_sphere_run.hpp
 ///
-/// What the step keeps: the four runs and the reference, the census of the modified run, and
-/// the thermal energies of the boost's runs at its end.
+/// What the step keeps: the four runs and the reference, the census of the modified run with
+/// its largest value before t = 0.45, and the thermal energies of the boost's runs at t = 0.6.
 
 struct Sphere {
   std::vector<app::SphereRun> runs;  // none, standard, modified, switch
@@ -983,9 +984,9 @@ struct Sphere {
 };
 
 /// The table, printed from the records.  The thermal energies at t = 0.2, 0.3 and 0.4 are read
-/// off each run's record of every step (app::value_at interpolates in it), the 90 % radius off
-/// the particles kept at maximum compression.  The reference's row leaves steps, wall time and
-/// drift at zero: it is not an SPH run.
+/// off each run's record of every step (app::value_at: the first record at or after each
+/// time), the 90 % radius off the particles kept at maximum compression.  The reference's row
+/// leaves steps, wall time and drift at zero: it is not an SPH run.
 void print_sphere_table(const Sphere& result, const sph::HomologousSphereSetup& setup) {
   std::printf("  zeroth-order estimate (eq 26): rho' = %.0f, R' = %.4f\n",
               setup.zeroth_order_density(), setup.zeroth_order_radius());
@@ -1144,9 +1145,9 @@ Sphere step4_homologous_sphere(const app::Chapter& chapter, const Parameters& pa
   return result;
 }
 
-/// The step's two figures are drawn by the file homologous_sphere_figures.hpp.  Apart from the
-/// drawing, it makes one decision that matters when reading Fig 4: which panels share the
-/// paper's scale.
+/// The step's two figures are drawn by the file homologous_sphere_figures.hpp.  Besides
+/// drawing, it decides which panels of Fig 4 share the paper's scale, and for each of those it
+/// runs the Lagrangian sphere once more, to that run's own time of maximum compression.
 /// \show_file homologous_sphere_figures.hpp
 ///
 /// \section ch05_strong Step 5: shocks -- Sod's tube, chapter 4's 3D tube, the colliding streams
@@ -1339,9 +1340,8 @@ void streams_row(Strong& out, const std::string& name, const typename Scene::Ter
   out.inversions[name] = static_cast<long>(run.inversions.all);
 }
 
-/// The fourth and fifth rows are variants of the chapter's parameters, made here: a copy with
-/// the explicit kick switched on, and a restricted term whose \f$ \beta \f$ is set to 0, which
-/// leaves the collective term to act alone.
+/// The fourth and fifth rows are built from the chapter's own terms, so that each differs from
+/// the modified row in one thing only: the kick, or the restricted term's \f$ \beta \f$.
 void colliding_streams(Strong& out, const Parameters& par) {
   std::printf(
       "  colliding streams at Mach 10, t = 0.4 (chapter 3): pairs that have passed each other\n");

@@ -134,7 +134,7 @@ inline void save_evrard_profile_figure(const std::string& path, const EvrardRun&
   const char* labels[] = {"v_r  [code units]", "\\rho  [code units]", "P  [code units]"};
   const char* titles[] = {"radial velocity", "density", "pressure"};
   /// The radius axis is logarithmic, so that the core and the shock get as much room as the
-  /// infalling envelope; so are density and pressure, which span decades from one to the other.
+  /// infalling envelope; so are density and pressure, which span decades from the core out.
   for (int panel = 0; panel < 3; ++panel) {
     plot::Axes& ax = figure.panel(panel);
     ax.xscale(plot::Scale::log).xlim(0.005, 1.2).xlabel("r  [code units]").ylabel(labels[panel]);

@@ -161,9 +161,10 @@ EvrardRun run_evrard(const std::string& name, const sph::EvrardSetup& setup,
       sim.run_until(t, on_step);
     }
   };
-  /// The run: to t = 0.8, where it keeps the particles, their centre of mass and the cost so
-  /// far, then on to the end.  If the simulation stops the run, its message ends up in
-  /// `EvrardRun::stopped`, and what was recorded is returned all the same.
+  /// The run: to t = 0.8, where it keeps the particles, their centre of mass, the cost so far
+  /// and the energy error of the last record, which is at 0.8 itself (the last step is cut to
+  /// end there); then on to the end.  A stop by the simulation (an sph::Error) is caught, as
+  /// the file's comment says; any other exception still ends the program.
   try {
     run_until(std::min(0.8, t_end));
     run.at_08 = sim.particles();

@@ -216,8 +216,8 @@ struct Parameters {
   bool one_step = false;  // Steps 4-6 with one step for all (and Step 4's comparisons)
   bool quick = false;
 
-  /// The library's objects, built from these numbers; last, `default_schemes()`, the test that
-  /// decides whether Selhammar's claims are checked.
+  /// The library's objects, built from these numbers.  `tree()` takes the relative criterion
+  /// only when `--relative` is positive; at 0 the opening angle alone decides.
   sph::MonaghanGingold1983 standard() const { return {alpha, beta, nu2}; }
   sph::RestrictedVonNeumannRichtmyer restricted() const { return {beta, nu2}; }
   sph::SelhammarCollective<3> collective() const { return {eta, neighbours}; }
@@ -356,7 +356,7 @@ sph::Particles<3> with_smoothing_lengths(sph::Particles<3> p, const Parameters& 
 /// \show_file gravity_alone.hpp
 ///
 /// Back in the program, `DirectCheck` keeps for each N the two spheres' relative differences
-/// and the net force, for the checks at the end.
+/// and the Evrard sphere's net force, for the checks at the end.
 
 struct DirectCheck {
   std::vector<int> n;
@@ -380,9 +380,9 @@ DirectCheck step1_direct_summation(const Parameters& par) {
     evrard_setup.particles = n;
     const sph::Particles<3> evrard =
         with_smoothing_lengths(sph::make_evrard_sphere(evrard_setup), par);
-    /// With the smoothing lengths of a first step on both spheres, one evaluation of each
-    /// gives its W; divided by the exact \f$ -\tfrac35 \f$ and \f$ -\tfrac23 \f$, it gives the
-    /// relative differences that the table prints and the checks read.
+    /// In the set-ups' units, \f$ G = M = R = 1 \f$, the exact energies are the bare
+    /// \f$ -\tfrac35 \f$ and \f$ -\tfrac23 \f$, so one evaluation of each sphere gives its W
+    /// and its relative difference at once.
     const app::GravityField u = app::gravity_alone(sph::DirectGravity{}, uniform);
     const app::GravityField e = app::gravity_alone(sph::DirectGravity{}, evrard);
     const auto mean_h = [](const sph::Particles<3>& p) {
@@ -497,10 +497,9 @@ DirectCheck step1_direct_summation(const Parameters& par) {
 /// The step measures the quadrupole tree there at \f$ \theta \f$ = 0.3 and 0.5 and the
 /// relative criterion at its default \f$ \alpha \f$, and the chapter's own tree (a check).
 ///
-/// **The rows.**  One measurement is one row of `app::TreeAccuracy`: the error quantiles, the
-/// potential energy's error, the relative time, the net force and the interactions.  The type
-/// sits in tree_figures.hpp with the two figures drawn from such rows, `tree_accuracy.png` and
-/// `tree_cost.png`:
+/// **The rows.**  One measurement is one row of `app::TreeAccuracy`.  The type sits in
+/// tree_figures.hpp with the figure drawn from such rows, `tree_accuracy.png`, and the one
+/// drawn from the timings of the cost against N, `tree_cost.png`:
 ///
 /// \show_file tree_figures.hpp
 ///
@@ -622,9 +621,9 @@ TreeStudy step2_tree(const app::Chapter& chapter, const Parameters& par) {
                   .c_str());
   std::printf("  net force |sum m a| / sum m|a| = %.1e (direct summation: round-off)\n",
               study.momentum);
-  /// Then the hard case, where the pulls cancel: the random uniform sphere of the tests, with
-  /// rows for the angles 0.3 and 0.5 and for the relative criterion at its default.  These rows
-  /// enter the table and the checks, not the figure.
+  /// Then the hard case, the random uniform sphere of the tests.  Its rows are printed but not
+  /// drawn, since the figure is of the Evrard sphere; of them the checks keep only the
+  /// chapter's own tree.
   // Where a tree is weakest: the pulls cancel at the centre of a uniform sphere.
   const sph::Particles<3> ball = sph::random_ball(par.quick ? 2000 : 10000, 11, false);
   app::GravityField ball_exact;
@@ -1092,8 +1091,6 @@ void print_energy_table(const Collapse& c, const Parameters& par) {
         run->momentum_drift);
     if (!run->stopped.empty()) std::printf("      stopped: %s\n", run->stopped.c_str());
   }
-  /// The second table scans each run's records for the largest change of its total energy: a
-  /// loss at the bounce that is later won back does not show at the end.
   // The largest change of the total energy on the way, not only at the end.
   std::printf("  the total energy's largest change on the way:\n");
   std::printf("    %-21s %9s %7s\n", "", "|dE/E|", "at t");
@@ -1920,10 +1917,11 @@ Extreme step7_extreme(const Parameters& par, const Collapse& c) {
 /// The summary's `error` line, which the table of all chapters shows, is the three viscosities'
 /// \f$ L_1(\log_{10}\rho) \f$ at t = 0.8.
 ///
-/// `Findings` gathers the seven steps' results for `check_claims`, which turns each item of the
-/// list above into one `chapter.claim`: its condition, the line the summary prints, and whether
-/// it is checked whatever the options (a last argument `true`) or only with the chapter's own
-/// schemes.
+/// `Findings` gathers the seven steps' results for `check_claims`, which states each item of
+/// the list above as one or more calls of `chapter.claim`: a condition, the line printed under
+/// "Checks", and, as the last argument, whether it is checked even when the options have changed
+/// the chapter's schemes; a claim without it is checked only with the chapter's own schemes,
+/// and otherwise reported.
 
 struct Findings {
   const DirectCheck& direct;
@@ -2037,8 +2035,10 @@ void check_claims(app::Chapter& chapter, const Parameters& par, const Findings& 
     // power-of-two rounding and the blocks that end every 0.01 cost more than they save)
     chapter.claim(worst < 0.05 && (par.quick || own.updates < one.updates), text, true);
   }
-  /// The fixed softening must change the energy by less than a fifth of what softening with h
-  /// does: only then is the softening, not the integration, what costs the energy.
+  /// The rest are conservation and accuracy, checked whatever the options: the fixed
+  /// softening's energy (with `--one-step`, which makes that run), our 1D code against the
+  /// finite-volume profile, and Step 7's close pair and far particle.  Last, the summary's
+  /// `error` line.
   if (const auto& fixed = f.collapse.fixed) {
     std::snprintf(text, sizeof text,
                   "fixed softening conserves energy: |dE/E| %.1e at t = %.1f (softening h: %.1e)",

@@ -57,7 +57,7 @@ void four_panel_figure(const app::Chapter& chapter, const std::string& file,
   a.title(panel_a_label + " at the particles");
   a.scatter(y, panel_a, {.color = plot::black, .size = 2.0});
   /// Panels (b)-(d) then share one y range, so that each method's scatter is judged at the
-  /// others' scale.  Each draws one method's x-component at the particles over the analytic
+  /// others' scale.  Each draws one method's x-component at the particles against the analytic
   /// curve; its title carries the rms of the whole error vector, y and z components included.
   // the common y range of panels (b)-(d): the analytic range with a margin, widened to the
   // results' 0.5 and 99.5 percentiles (a few outliers must not squash the curve)
@@ -118,8 +118,8 @@ void compression_figure(const app::Chapter& chapter, const StaticSet<D>& s,
   a.scatter(x, vx, {.color = plot::black, .size = 2.0});
   /// Panels (b) and (c) are Watkins' and Flebbe's gradient of the divergence on a fixed range
   /// about the analytic curve.  Panel (d), Brookshaw's Laplacian taken as a curl curl, gets the
-  /// same range: its error, the whole field, is then seen at the scale of the answer it stands
-  /// in for.
+  /// same range, so that its error -- all of its value, since the exact curl curl is zero -- is
+  /// seen at the scale of the gradient of the divergence in (b) and (c).
   const double lo = -1.3 * k2, hi = 1.3 * k2;
   for (int k = 0; k < 2; ++k) {
     const MethodResult<D>& r = rows[k == 0 ? 0 : 2];  // Watkins, Flebbe
@@ -258,8 +258,8 @@ inline void cost_figure(const app::Chapter& chapter, const CostStudy& study) {
   c.title("against run time, N = 1000 to " + std::to_string(study.by_n.back().particles));
   /// Every method gets one line in each panel, in its own style: the series against N gives
   /// panels (a) and (c), the series against the neighbour number panel (b).  Panel (a) also gets
-  /// the slope that the smoothing alone would give, \f$ N^{-2/3} \f$: where a method's curve
-  /// leaves it, the glass's noise has taken over.
+  /// the slope the smoothing error alone would follow, \f$ N^{-2/3} \f$, through Watkins' first
+  /// point: a curve that falls more slowly than the guide has met the glass's noise.
   for (std::size_t k = 0; k < all_methods.size(); ++k) {
     std::vector<double> n, en, g, eg, t, et;
     for (const auto& r : study.by_n) {

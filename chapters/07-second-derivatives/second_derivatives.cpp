@@ -178,15 +178,14 @@ using sph::setups::compression_field;
 
 /// \subsection ch07_machinery The machinery of the static tests
 ///
-/// Everything the steps share is in one file, `second_derivative_tests.hpp`, shown here: the
-/// four methods behind `Method` and `apply`, the frozen set `StaticSet`, the scores of the
-/// previous subsection (`measure`), and the tables and records of the sweeps that the steps
-/// fill.  Most steps call it through two functions: `run_method`, which times one method on one
-/// set and scores its answer, and `table`, which does that for all four and prints the rows.
-/// The records further down (`NoiseStudy`, `DisorderStudy`, `CostStudy`) are met again in
-/// Steps 4, 7 and 8.
+/// Here is `second_derivative_tests.hpp`, the machinery listed above, with the scores of the
+/// previous subsection in `measure`.  Most steps call it through two functions: `run_method`,
+/// which times one method on one set and scores its answer, and `table`, which does that for
+/// all four methods and prints the rows.  The records further down (`NoiseStudy`,
+/// `DisorderStudy`, `CostStudy`) are filled by Steps 4, 7 and 8.
 ///
 /// \show_file second_derivative_tests.hpp
+///
 /// \section ch07_step1 Step 1: on a lattice, no noise
 ///
 /// On a regular lattice every particle sees the same, symmetric neighbourhood: no sum has
@@ -240,8 +239,8 @@ std::vector<MethodResult<D>> lattice_rows(const Parameters& par, double& two_pi_
   return rows;
 }
 
-/// The step runs the lattice in both dimensions and keeps, besides the rows, each lattice's
-/// \f$ 2\pi h \f$, whose square bounds the library's lattice check at the end of the program.
+/// The step runs the lattice in 2D and then in 3D.  Both tables are printed, but only the 3D
+/// rows and the 3D \f$ 2\pi h \f$ enter the library's lattice check at the end of the program.
 struct Step1 {
   std::vector<MethodResult<2>> rows2;
   std::vector<MethodResult<3>> rows3;
@@ -341,11 +340,12 @@ std::vector<MethodResult<D>> fig1(const app::Chapter& chapter, const Sets<D>& se
 /// The figure is drawn by `four_panel_figure`, the first of the chapter's five figure
 /// functions.  All five are in the file `second_derivative_figures.hpp`, shown here: the paper's
 /// four-panel form, used again in Steps 4 and 5, the compressive field of Step 6, and the three
-/// summary figures of Steps 4, 7 and 8.  Two rules run through them: a method keeps one colour,
-/// marker and dash in every figure, and panels that set methods side by side share one range,
-/// so that the eye compares like with like.
+/// summary figures of Steps 4, 7 and 8.  Two rules run through them: a method keeps its colour
+/// in every figure, and its marker and dash in every summary figure, and panels that set
+/// methods side by side share one range, so that the eye compares like with like.
 ///
 /// \show_file second_derivative_figures.hpp
+///
 /// \section ch07_step4 Step 4: a noisy velocity (Watkins' Fig 2)
 ///
 /// "In a real simulation, the velocity field is unlikely to be free from noise": the paper adds
@@ -727,10 +727,11 @@ struct PressureAndViscosity : sph::Scene<3> {
   using Terms = sph::Terms<sph::PressureHernquistKatz, sph::WatkinsViscosity<3>>;
 };
 
-/// A simulation's terms are part of its type: a scene derives from `sph::Scene` and lists them
-/// in `Terms`, and the step's passes are built for exactly that list.  So the two runs are two
-/// scenes, identical but for one entry.  `TermStudy` keeps the step's numbers: the errors, the
-/// two net forces and the two times.
+/// A simulation's terms are part of its type -- a scene derives from `sph::Scene` and lists them
+/// in `Terms`, and the step's passes are built for exactly that list -- so the two simulations
+/// need the two scenes above, identical but for one entry.  `TermStudy` keeps what the step
+/// measures: the errors against the analytic acceleration and against the operators, the two
+/// net forces and the two times.
 struct TermStudy {
   double rms = 0, max = 0, net_force = 0, net_force_flebbe = 0;
   double operators = 0;  // largest |a_term - a_operators| / largest |a|
@@ -751,10 +752,9 @@ TermStudy viscosity_term(const Sets<3>& sets) {
   sph::Simulation<PressureOnly> pressure(p, sph::setups::unit_box<3>(), settings);
   sph::Simulation<PressureAndViscosity> viscous(p, sph::setups::unit_box<3>(),
                                                 sph::WatkinsViscosity<3>({mu_s, mu_b}), settings);
-  /// Both simulations have evaluated their accelerations once, on construction.  We subtract
-  /// the pressure run's from the viscous run's and score the rest against the analytic
-  /// acceleration above, taken at each particle's own summed density and measured in units of
-  /// its largest value, `scale`.  The net force is read from the same differences.
+  /// The difference of the two simulations' accelerations is scored against the analytic
+  /// acceleration at each particle's own summed density, in units of its largest value at
+  /// \f$ \rho = 1 \f$ (`scale`), and gives the net force.
   TermStudy r;
   // the viscous acceleration is the difference of the two runs' accelerations
   const auto& b = viscous.particles();
@@ -776,12 +776,10 @@ TermStudy viscosity_term(const Sets<3>& sets) {
   r.rms = std::sqrt(ss / static_cast<double>(b.size())) / scale;
   r.max /= scale;
   r.net_force = app::net_force_fraction(b.mass, visc);
-  /// Then the test of the term against the operators.  The simulation hands out its own
-  /// neighbour list and box, so the `ParticleSet` built from them is the very set the step
-  /// summed over; `curl_curl` and `grad_div` on it, weighted by the coefficients of eq 2 and
-  /// divided by \f$ \rho_i \f$, must reproduce the term to round-off.  Last come Flebbe's force
-  /// on the same field, for its net force, and the two steps timed by `alternating_medians` of
-  /// the test file.
+  /// For the test against the operators the simulation hands out its own neighbour list and
+  /// box, so the `ParticleSet` built from them is the very set the step summed over.  Last come
+  /// Flebbe's force on the same field, for its net force, and the timing of the two steps by
+  /// `alternating_medians` of second_derivative_tests.hpp.
   // the stand-alone operators on the step's own densities and neighbour list
   const dv::ParticleSet<3> set(b, viscous.neighbours(), viscous.box());
   const std::vector<Vec<3>> v(b.velocity.begin(), b.velocity.end());
@@ -896,7 +894,7 @@ void check_claims(app::Chapter& chapter, bool own_schemes, const Results& r) {
   chapter.not_reproduced(ratio < 0.5,
                          "Fig 3 'considerably less' (a ratio below 0.5): " + format("%.2f", ratio));
   /// The last four checks are the library's, passed `true` as `always`, so that they count
-  /// whatever the options: every operator on the lattice stays within Step 1's smoothing
+  /// whatever the options: every operator on the 3D lattice stays within Step 1's smoothing
   /// bound, Brookshaw's Laplacian fails the compressive field while Watkins' curl curl of it
   /// stays near zero, and the term in the step equals the stand-alone operators and comes
   /// within half that bound of the analytic acceleration.
@@ -1039,9 +1037,10 @@ int main(int argc, char** argv) {
     const bool own = par.particles == 5000 && par.neighbours_2d == 30 && par.neighbours_3d == 60 &&
                      par.noise == 0.1;
 
-    /// The steps, in order.  The sets of Step 2 are made once, and every later step reads them:
-    /// the settled set and the random set are the same particles from Step 3 to Step 9.  Each
-    /// step returns its record, and the 3D records are kept for the claims.
+    /// The steps, in order.  The sets of Step 2 are made once and passed on: every later step
+    /// starts from them, except Step 8's sweep over N, which relaxes a glass of its own for each
+    /// N.  Of the records the steps return, the 3D ones go to the claims, the 2D ones of Steps 4
+    /// and 7 only into their summary figures.
     const Step1 lattice = step1_lattice(par);
     std::printf("Step 2: the particle sets\n");
     const Sets<2> sets2 = make_sets<2>(par);
