@@ -122,9 +122,50 @@ std::vector<std::string> words(const std::string& text) {
 
 /// A page being written, line by line, with where each line came from ("file:line", or empty),
 /// so that Doxygen's warnings about the page can be traced back to the chapter's own files.
+/// A Markdown table row with the bars inside its formulas (\f$ ... \f$) made `\vert` (and
+/// `\|` made `\Vert`): Markdown splits a row at every bar, and a formula such as
+/// \f$ \sum m|v| \f$ would cut the row into more cells than its header has.
+std::string protect_formula_bars(const std::string& row) {
+  std::string out;
+  bool formula = false;
+  for (std::size_t k = 0; k < row.size(); ++k) {
+    if (row.compare(k, 3, "\\f$") == 0) {
+      formula = !formula;
+      out += "\\f$";
+      k += 2;
+    } else if (formula && row.compare(k, 2, "\\|") == 0) {
+      out += "\\Vert ";
+      k += 1;
+    } else if (formula && row[k] == '|') {
+      out += "\\vert ";
+    } else {
+      out += row[k];
+    }
+  }
+  return out;
+}
+
+/// The cells of a Markdown table row: bars outside code spans and formulas, less the outer two.
+int table_cells(const std::string& row) {
+  int bars = 0;
+  bool code = false, formula = false;
+  for (std::size_t k = 0; k < row.size(); ++k) {
+    if (!formula && row[k] == '`') code = !code;
+    if (!code && row.compare(k, 3, "\\f$") == 0) formula = !formula;
+    if (row[k] == '\\' && k + 1 < row.size() && row[k + 1] == '|') {
+      ++k;  // an escaped bar is text
+      continue;
+    }
+    if (!code && !formula && row[k] == '|') ++bars;
+  }
+  const std::string t = trim(row);
+  return bars - (t.size() > 1 && t.back() == '|' ? 1 : 0);  // "| a | b |": three bars, two cells
+}
+
 class Page {
  public:
-  /// Appends \p text (one or more lines, without the final newline) taken from \p origin.
+  /// Appends \p text (one or more lines, without the final newline) taken from \p origin.  Outside
+  /// code and verbatim blocks, a table row's formulas lose their bars (protect_formula_bars).
   void add(const std::string& text, const std::string& origin = "") {
     if (text.empty()) {
       lines_.emplace_back();
@@ -132,9 +173,38 @@ class Page {
       return;
     }
     for (const std::string& line : split_lines(text)) {
-      lines_.push_back(line);
+      const std::string t = trim(line);
+      if (t == "\\code{.cpp}" || t == "\\verbatim") block_ = true;
+      const bool row = !block_ && !t.empty() && t.front() == '|';
+      if (t == "\\endcode" || t == "\\endverbatim") block_ = false;
+      lines_.push_back(row ? protect_formula_bars(line) : line);
       origins_.push_back(origin);
     }
+  }
+  /// Every table row whose number of cells differs from its header's, as "origin: message".
+  [[nodiscard]] std::vector<std::string> table_problems() const {
+    std::vector<std::string> problems;
+    bool block = false;
+    int header = -1;  // the header's cells, -1 outside a table
+    for (std::size_t k = 0; k < lines_.size(); ++k) {
+      const std::string t = trim(lines_[k]);
+      if (t == "\\code{.cpp}" || t == "\\verbatim") block = true;
+      if (t == "\\endcode" || t == "\\endverbatim") block = false;
+      if (block || t.empty() || t.front() != '|') {
+        header = -1;
+        continue;
+      }
+      const int cells = table_cells(lines_[k]);
+      if (header < 0) {
+        header = cells;
+      } else if (cells != header) {
+        problems.push_back(
+            (origins_[k].empty() ? "page line " + std::to_string(k + 1) : origins_[k]) +
+            ": a table row has " + std::to_string(cells) + " cells, its header " +
+            std::to_string(header) + " (a bar in the text? write it \\| or in a formula)");
+      }
+    }
+    return problems;
   }
   /// The page's text.
   [[nodiscard]] std::string text() const {
@@ -152,6 +222,7 @@ class Page {
  private:
   std::vector<std::string> lines_;
   std::vector<std::string> origins_;
+  bool block_ = false;  ///< inside a code or verbatim block
 };
 
 /// "file:line" for messages and for the origin of page lines.
@@ -638,6 +709,7 @@ Page convert(const Settings& settings, std::vector<Chapter>& chapters, std::size
     }
   }
   page.add(navigation(chapters, index));
+  for (const std::string& problem : page.table_problems()) warn(problem);
   return page;
 }
 
