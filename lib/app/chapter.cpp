@@ -380,6 +380,23 @@ int Chapter::finish() {
   for (const Check& c : checks_) {
     if (!c.ok) *err_ << "  - " << c.message << "\n";
   }
+  // The checks hold the chapter's numbers at its defaults (full or --quick): when the user
+  // changed a scene parameter, say which, so that a failure is not read as a broken program.
+  std::string changed;
+  for (const CLI::Option* option : cli_.get_options()) {
+    if (option->get_group() != "Scene parameters" || option->count() == 0) continue;
+    const auto& given = option->results();
+    std::string value;
+    for (const std::string& r : given) value += (value.empty() ? "" : " ") + r;
+    changed +=
+        "  " + option->get_name() + " " + value + " (default " + option->get_default_str() + ")\n";
+  }
+  if (!changed.empty()) {
+    *err_ << "The checks are set for the chapter's defaults";
+    *err_ << (quick_ ? " (with --quick)" : "") << "; these scene parameters differ from them:\n"
+          << changed << "A failed check may then measure what they change, not a fault of the "
+          << "program.\n";
+  }
   *err_ << std::flush;
   return 1;
 }

@@ -255,6 +255,32 @@ TEST_CASE("a failed check makes finish return non-zero and is reported", "[app]"
   CHECK(read(dir / "summary.txt").find("checks = 1 passed, 1 failed") != std::string::npos);
 }
 
+// A check that fails under parameters the user changed names them, so that the failure is
+// read as what they change, not as a broken program; with the defaults nothing is added.
+TEST_CASE("a failed check names the scene parameters that differ from the defaults", "[app]") {
+  const auto run = [](std::vector<std::string> args) {
+    CommandLine line(std::move(args));
+    app::Chapter chapter("99-test", "Chapter 99: a test", line.argc(), line.argv());
+    double gamma = 1.4;
+    int particles = 450;
+    chapter.parameter("--gamma", gamma, "adiabatic index");
+    chapter.parameter("--particles", particles, "particles");
+    std::ostringstream out, err;
+    chapter.set_streams(out, err);
+    REQUIRE(chapter.parse() == -1);
+    chapter.check(false, "L1(rho) = 0.004 exceeds 0.003");
+    CHECK(chapter.finish() != 0);
+    return err.str();
+  };
+  const std::string changed =
+      run({"ch99", "--gamma", "1.6", "--output", scratch("changed").string()});
+  CHECK(changed.find("these scene parameters differ") != std::string::npos);
+  CHECK(changed.find("--gamma 1.6 (default 1.4)") != std::string::npos);
+  CHECK(changed.find("--particles") == std::string::npos);
+  const std::string defaults = run({"ch99", "--output", scratch("defaults").string()});
+  CHECK(defaults.find("differ") == std::string::npos);
+}
+
 TEST_CASE("all checks passing makes finish return zero", "[app]") {
   CommandLine line({"ch99", "--output", scratch("pass").string()});
   app::Chapter chapter("99-test", "Chapter 99: a test", line.argc(), line.argv());
