@@ -801,19 +801,20 @@ int main(int argc, char** argv) {
     chapter.parameter("--sedov-cells", par.sedov.cells, "Sedov blast: lattice cells per axis", 12)
         .check(app::count_between(
             8, 96, [](double cells) { return app::particle_bytes(3, cells * cells * cells); }));
-    static const std::vector<std::string> groups = {"strong", "streams", "vacuum",     "hot",
-                                                    "gamma",  "boost",   "degenerate", "sedov"};
+    static const std::vector<std::string> groups = {"strong", "vacuum", "hot",        "streams",
+                                                    "gamma",  "boost",  "degenerate", "sedov"};
+    std::string group_list;
+    for (const std::string& group : groups) group_list += (group_list.empty() ? "" : ", ") + group;
     chapter
         .parameter("--only", par.only,
-                   "run only the groups whose name contains this: strong, vacuum, hot, "
-                   "streams, gamma, boost, degenerate, sedov")
+                   "run only the groups whose name contains this: " + group_list)
         .check(app::require<std::string>(
             [](const std::string& only) {
               return std::any_of(groups.begin(), groups.end(), [&](const std::string& group) {
                 return group.find(only) != std::string::npos;
               });
             },
-            "matches no group (strong, vacuum, hot, streams, gamma, boost, degenerate, sedov)"));
+            "matches no group (" + group_list + ")"));
     if (int rc = chapter.parse(); rc >= 0) return rc;
     const auto wanted = [&](const std::string& group) {
       return par.only.empty() || group.find(par.only) != std::string::npos;

@@ -170,6 +170,7 @@ class Page {
     if (text.empty()) {
       lines_.emplace_back();
       origins_.push_back(origin);
+      table_row_.push_back(false);
       return;
     }
     for (const std::string& line : split_lines(text)) {
@@ -179,18 +180,15 @@ class Page {
       if (t == "\\endcode" || t == "\\endverbatim") block_ = false;
       lines_.push_back(row ? protect_formula_bars(line) : line);
       origins_.push_back(origin);
+      table_row_.push_back(row);
     }
   }
   /// Every table row whose number of cells differs from its header's, as "origin: message".
   [[nodiscard]] std::vector<std::string> table_problems() const {
     std::vector<std::string> problems;
-    bool block = false;
     int header = -1;  // the header's cells, -1 outside a table
     for (std::size_t k = 0; k < lines_.size(); ++k) {
-      const std::string t = trim(lines_[k]);
-      if (t == "\\code{.cpp}" || t == "\\verbatim") block = true;
-      if (t == "\\endcode" || t == "\\endverbatim") block = false;
-      if (block || t.empty() || t.front() != '|') {
+      if (!table_row_[k]) {
         header = -1;
         continue;
       }
@@ -222,7 +220,8 @@ class Page {
  private:
   std::vector<std::string> lines_;
   std::vector<std::string> origins_;
-  bool block_ = false;  ///< inside a code or verbatim block
+  std::vector<bool> table_row_;  ///< per line: a table row (outside code and verbatim blocks)
+  bool block_ = false;           ///< the last line added is inside a code or verbatim block
 };
 
 /// "file:line" for messages and for the origin of page lines.

@@ -145,6 +145,11 @@ void compression_figure(const app::Chapter& chapter, const StaticSet<D>& s,
   fig.save_png(chapter.figure_path("compression_" + std::to_string(D) + "d.png").string());
 }
 
+/// The neighbour numbers the two figures below were run with, for their stamps.
+inline std::string neighbour_note(double neighbours_2d, double neighbours_3d) {
+  return "2D: " + format("%g", neighbours_2d) + " neighbours, 3D: " + format("%g", neighbours_3d);
+}
+
 /// The errors of every method against the velocity noise, 2D (\p n2) and 3D (\p n3) side by
 /// side, log-log, with a line of slope one: `noise.png`.
 inline void noise_figure(const app::Chapter& chapter, const NoiseStudy<2>& n2,
@@ -156,9 +161,8 @@ inline void noise_figure(const app::Chapter& chapter, const NoiseStudy<2>& n2,
                            .kernel = "M4",
                            .particles = particles,
                            .extra = "uniform noise in [-\\epsilon, \\epsilon] on each velocity "
-                                    "component, mean of 3 draws; 2D: " +
-                                    format("%g", neighbours_2d) +
-                                    " neighbours, 3D: " + format("%g", neighbours_3d)});
+                                    "component, mean of 3 draws; " +
+                                    neighbour_note(neighbours_2d, neighbours_3d)});
   auto draw = [&](plot::Axes& ax, const auto& study, const std::string& title) {
     ax.xscale(plot::Scale::log).yscale(plot::Scale::log);
     ax.xlabel("noise amplitude \\epsilon")
@@ -193,9 +197,8 @@ inline void disorder_figure(const app::Chapter& chapter, const DisorderStudy<2>&
                            .particles = particles,
                            .extra = "glass moved by random offsets up to 2 spacings, then the "
                                     "Poisson set; densities with the self term, except the open "
-                                    "markers (Fig 3's set without it); 2D: " +
-                                    format("%g", neighbours_2d) +
-                                    " neighbours, 3D: " + format("%g", neighbours_3d)});
+                                    "markers (Fig 3's set without it); " +
+                                    neighbour_note(neighbours_2d, neighbours_3d)});
   /// Each panel draws a curve per method through the disturbed glasses to the Poisson set, and
   /// the Poisson set as Fig 3 sums it, without the self term, as an open marker off the curve.
   /// On the 3D panel two vertical lines mark the density scatter of Watkins' own two sets.

@@ -523,8 +523,8 @@ TEST_CASE("Watkins viscosity term: walls lend the Poiseuille profile's velocity 
     for (std::size_t i = 0; i < q.size(); ++i) {
       if (q.kind[i] != sph::ParticleKind::fluid) continue;
       const double err = std::abs(q.acceleration[i][0] + g) / g;
-      const bool near = std::abs(q.position[i][1] - centre) > a - reach;
-      (near ? e.near : e.far) = std::max(near ? e.near : e.far, err);
+      double& worst = std::abs(q.position[i][1] - centre) > a - reach ? e.near : e.far;
+      worst = std::max(worst, err);
     }
     return e;
   };

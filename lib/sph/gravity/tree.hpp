@@ -898,8 +898,7 @@ struct TreeGravity {
   template <bool quadrupole>
   void sum_far_field(const Lists& lists, float xi, float yi, float zi,
                      BlockSums<float, V>& sums) const {
-    BlockSums<float, V> local = sums;  // (in registers, as below)
-    float *fx = local.x, *fy = local.y, *fz = local.z, *fphi = local.phi;
+    float *fx = sums.x, *fy = sums.y, *fz = sums.z, *fphi = sums.phi;
     const float *nx = lists.fx.data(), *ny = lists.fy.data(), *nz = lists.fz.data(),
                 *nm = lists.nm.data();
     const float *q0 = lists.nq[0].data(), *q1 = lists.nq[1].data(), *q2 = lists.nq[2].data(),
@@ -929,7 +928,6 @@ struct TreeGravity {
       for (int l = 0; l < V; ++l) node(k + l, l);
     }
     for (std::size_t k = full_nodes; k < nodes; ++k) node(k, static_cast<int>(k - full_nodes));
-    sums = local;
   }
 
   // Near field, first pass: Newton's force from the particles of the opened leaves farther
@@ -938,10 +936,7 @@ struct TreeGravity {
   [[gnu::always_inline]] std::size_t sum_newtonian_pairs(Lists& lists, std::uint32_t t, float xi,
                                                          float yi, float zi,
                                                          BlockSums<float, V>& sums) const {
-    // (the sums in a local copy, which the compiler can keep in registers: it need not fear
-    // that the lists' arrays share their memory)
-    BlockSums<float, V> local = sums;
-    float *fx = local.x, *fy = local.y, *fz = local.z, *fphi = local.phi;
+    float *fx = sums.x, *fy = sums.y, *fz = sums.z, *fphi = sums.phi;
     const float *px = lists.px.data(), *py = lists.py.data(), *pz = lists.pz.data(),
                 *pm = lists.pm.data(), *p4h2 = lists.p4h2.data();
     const float four_h2 = four_h2_units_[t];
@@ -974,7 +969,6 @@ struct TreeGravity {
     }
     for (std::size_t k = full_pairs; k < pairs; ++k)
       softened[n_softened++] = static_cast<std::uint32_t>(k);
-    sums = local;
     return n_softened;
   }
 
@@ -995,8 +989,7 @@ struct TreeGravity {
       bh[s] = inv_h_[j];
     }
     const double x = x_[t], y = y_[t], z = z_[t], inv_h = inv_h_[t];
-    BlockSums<double, W> local = sums;  // (in registers, as above)
-    double *ax = local.x, *ay = local.y, *az = local.z, *phi = local.phi;
+    double *ax = sums.x, *ay = sums.y, *az = sums.z, *phi = sums.phi;
     for (std::size_t s = 0; s < blocks; s += W) {
 #pragma omp simd
       for (int l = 0; l < W; ++l) {
@@ -1008,7 +1001,6 @@ struct TreeGravity {
         phi[l] += bm[s + l] * pair.potential;
       }
     }
-    sums = local;
   }
 
   // The tree of the last evaluation.

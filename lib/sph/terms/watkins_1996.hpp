@@ -229,13 +229,9 @@ class WatkinsViscosity {
     volume[i] = in.m[i] * inverse_density[i];
   }
 
-  /// Whether j is a wall particle seen by fluid particle i (never, without walls).
+  /// Whether j is a wall particle seen by fluid particle i (asked only when the term has walls).
   bool sees_wall(std::size_t i, std::size_t j, const ParticleView<D>& in) const {
-    if constexpr (Walls::active) {
-      return in.kind[j] != ParticleKind::fluid && in.kind[i] == ParticleKind::fluid;
-    } else {
-      return false;
-    }
+    return in.kind[j] != ParticleKind::fluid && in.kind[i] == ParticleKind::fluid;
   }
 
   /// What the gradient pass sums for particle i: the velocity gradient (eqs 4 and 6, the
