@@ -809,12 +809,14 @@ int main(int argc, char** argv) {
         .parameter("--only", par.only,
                    "run only the groups whose name contains this: " + group_list)
         .check(app::require<std::string>(
-            [](const std::string& only) {
-              return std::any_of(groups.begin(), groups.end(), [&](const std::string& group) {
-                return group.find(only) != std::string::npos;
-              });
-            },
-            "matches no group (" + group_list + ")"));
+                   [](const std::string& only) {
+                     return std::any_of(groups.begin(), groups.end(),
+                                        [&](const std::string& group) {
+                                          return group.find(only) != std::string::npos;
+                                        });
+                   },
+                   "matches no group (" + group_list + ")")
+                   .description(""));  // (--help lists the groups already)
     if (int rc = chapter.parse(); rc >= 0) return rc;
     const auto wanted = [&](const std::string& group) {
       return par.only.empty() || group.find(par.only) != std::string::npos;
