@@ -63,4 +63,27 @@ struct Isothermal {
   double sound_speed(double, double) const { return c; }
 };
 
+/// An isothermal gas less its rest pressure, \f$ P = c^2(\rho - \rho_0) \f$: the weakly
+/// compressible fluid of Morris, Fox & Zhu (1997) and most SPH liquids.  The pressure force is
+/// the same as \f$ c^2\rho \f$'s for any density difference (a constant drops out of a
+/// gradient), but a particle set at rest at \f$ \rho_0 \f$ feels no pressure at all, so the
+/// push of the background pressure that makes a square lattice unstable is gone (chapter 8).
+/// The pressure is negative where the fluid expands below \f$ \rho_0 \f$.
+struct WeaklyCompressible {
+  double c = 1.0;     ///< the sound speed
+  double rho0 = 1.0;  ///< the density at zero pressure
+  static constexpr bool evolves_energy = false;
+  static constexpr const char* name = "weakly compressible";
+
+  WeaklyCompressible() = default;
+  WeaklyCompressible(double sound, double rest_density) : c(sound), rho0(rest_density) {
+    require(std::isfinite(sound) && sound > 0,
+            "weakly compressible fluid: the sound speed must be positive");
+    require(std::isfinite(rest_density) && rest_density > 0,
+            "weakly compressible fluid: the rest density must be positive");
+  }
+  double pressure(double rho, double) const { return c * c * (rho - rho0); }
+  double sound_speed(double, double) const { return c; }
+};
+
 }  // namespace sph

@@ -160,6 +160,14 @@ class Simulation {
     }
     if constexpr (Gravity::active) gravity_.add_accelerations(particles_, box_, active);
     if constexpr (External::active) external_accelerations(active);
+    if constexpr (requires { requires Boundaries::constrains_acceleration; }) {
+      // (after every force: a NaN is kept, for the check below to name)
+      for (std::size_t k = 0; k < evaluated_; ++k) {
+        const std::size_t i = active[k];
+        if (moves(i) && particles_.acceleration[i].allFinite())
+          boundaries_.constrain_acceleration(particles_.acceleration[i]);
+      }
+    }
     check_finite_forces();
   }
 

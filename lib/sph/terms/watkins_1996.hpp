@@ -51,6 +51,7 @@
 /// other side of the same fact: modes at the particle scale are hardly damped at all
 /// (\f$ \hat W \to 0 \f$).
 
+#include "sph/boundaries/parabolic_walls.hpp"
 #include "sph/derivatives/particle_set.hpp"
 #include "sph/error.hpp"
 #include "sph/fields.hpp"
@@ -115,60 +116,6 @@ struct ParticleViscosity {
   }
 };
 
-/// No walls: a neighbour's velocity, curl and divergence are its own.
-struct NoWalls {
-  static constexpr bool active = false;
-};
-
-/// Plane walls at \f$ y = c \pm a \f$ (y the coordinate \p axis), with the flow between them
-/// parabolic near the walls, as in Poiseuille flow: \f$ v_x = K(a^2 - y^2) \f$, \f$ v_y = 0 \f$
-/// (eq 16, y measured from the centre c).  A fixed particle j seen from a fluid particle i
-/// lends it
-///  - the velocity of that parabola through i (eq 17):
-///    \f$ [v_x]_j = [v_x]_i\,(a^2 - y_j^2)/(a^2 - y_i^2) \f$ for every component along the
-///    walls, and 0 across them -- zero at the wall (no slip), and of the other sign beyond it;
-///  - the parabola's curl, linear in y (eq 19): \f$ (\nabla\times\mathbf v)_j =
-///    (y_j/y_i)(\nabla\times\mathbf v)_i \f$.  (The printed eq 18 gives the curl as
-///    \f$ -2Ky \f$; for \f$ v_x = K(a^2-y^2) \f$ it is \f$ \partial_x v_y - \partial_y v_x =
-///    +2Ky \f$.  Eq 19 takes a ratio, so the sign does not enter.)
-///  - for the divergence, which Watkins et al. do not extrapolate, i's own: the wall adds
-///    nothing to the grad-div part (their flow has \f$ \nabla\cdot\mathbf v = 0 \f$).
-/// A fluid particle at or beyond a wall (eq 17 divides by \f$ a^2 - y_i^2 \f$), or one on the
-/// centre line that sees a wall (eq 19 divides by \f$ y_i \f$), has no pseudo-velocity: the
-/// factors are then NaN, and the step's check of the forces stops the run naming the particle
-/// and where it is.  (The pair functions run on many threads at once, where an exception
-/// cannot be thrown; the check runs after them.)
-template <int D>
-struct ParabolicWalls {
-  static constexpr bool active = true;
-  int axis = D - 1;       ///< the coordinate across the walls (y in 2D)
-  double centre = 0;      ///< c, the centre line
-  double half_width = 1;  ///< a, the distance of each wall from the centre line
-
-  ParabolicWalls() = default;
-  ParabolicWalls(double c, double a, int across = D - 1) : axis(across), centre(c), half_width(a) {
-    require(across >= 0 && across < D, "parabolic walls: the axis must be one of the box's");
-    require(std::isfinite(c), "parabolic walls: the centre must be finite");
-    require(std::isfinite(a) && a > 0,
-            "parabolic walls: the half-width must be positive (got " + show(a) + ")");
-  }
-
-  /// y of particle k, from the centre line.
-  double y(std::size_t k, const ParticleView<D>& in) const { return in.x.x[axis][k] - centre; }
-  /// Eq 17: the factor by which the components of \f$ \mathbf v_i \f$ along the walls are
-  /// lent to wall particle j.
-  double velocity_factor(std::size_t i, std::size_t j, const ParticleView<D>& in) const {
-    const double yi = y(i, in), yj = y(j, in), a2 = half_width * half_width;
-    if (!(std::abs(yi) < half_width)) return std::numeric_limits<double>::quiet_NaN();
-    return (a2 - yj * yj) / (a2 - yi * yi);
-  }
-  /// Eq 19: the factor by which \f$ (\nabla\times\mathbf v)_i \f$ is lent to wall particle j.
-  double curl_factor(std::size_t i, std::size_t j, const ParticleView<D>& in) const {
-    const double yi = y(i, in);
-    return yi != 0 ? y(j, in) / yi : std::numeric_limits<double>::quiet_NaN();
-  }
-};
-
 /// The term: Watkins et al.'s Navier-Stokes viscosity in D = 2 or 3 dimensions (the curl needs
 /// a plane), with coefficients of type Mu (ConstantViscosity, KinematicViscosity,
 /// ParticleViscosity).
@@ -229,11 +176,6 @@ class WatkinsViscosity {
     volume[i] = in.m[i] * inverse_density[i];
   }
 
-  /// Whether j is a wall particle seen by fluid particle i (asked only when the term has walls).
-  bool sees_wall(std::size_t i, std::size_t j, const ParticleView<D>& in) const {
-    return in.kind[j] != ParticleKind::fluid && in.kind[i] == ParticleKind::fluid;
-  }
-
   /// What the gradient pass sums for particle i: the velocity gradient (eqs 4 and 6, the
   /// neighbour's volume as weight) and, for varying coefficients, their gradients (eq 7).
   template <int Dim>
@@ -246,10 +188,8 @@ class WatkinsViscosity {
     double v_ij[D];
     for (int a = 0; a < D; ++a) v_ij[a] = p.v_ij[a];
     if constexpr (Walls::active) {
-      if (sees_wall(p.i, p.j, in)) {
-        // eq 17: the wall's pseudo-velocity, f v_i along the walls and 0 across them
-        const double f = walls.velocity_factor(p.i, p.j, in);
-        for (int a = 0; a < D; ++a) v_ij[a] = in.v[a][p.i] * (a == walls.axis ? 1.0 : 1.0 - f);
+      if (walls.lend_velocity && sph::sees_wall(p.i, p.j, in)) {
+        walls.velocity_difference(p.i, p.j, in, v_ij);  // eq 17: j's pseudo-velocity
       }
     }
     for (int a = 0; a < D; ++a)
@@ -302,7 +242,7 @@ class WatkinsViscosity {
     double curl_j[3] = {curl[j][0], curl[j][1], curl[j][2]};
     double divergence_j = divergence[j];
     if constexpr (Walls::active) {
-      if (sees_wall(i, j, in)) {
+      if (walls.lend_curl && sph::sees_wall(i, j, in)) {
         const double f = walls.curl_factor(i, j, in);  // (NaN: see ParabolicWalls)
         for (int c = 0; c < 3; ++c) curl_j[c] = f * curl[i][c];
         divergence_j = divergence[i];

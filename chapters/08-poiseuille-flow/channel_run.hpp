@@ -1,0 +1,277 @@
+#pragma once
+/// \file
+/// \brief One run of the Poiseuille channel (chapter 8): the scene, the choices a run can make,
+/// and what it records on the way -- the error against the start-up series, the rows'
+/// alternation, the density's excursion, the momentum the walls take.
+///
+/// Every step of the chapter calls `run_channel` with a `RunChoices` and reads the `ChannelRun`
+/// it returns.  The scene is a template over the viscosity term and the boundaries, so that a
+/// run with Watkins' term compiles no one-pass term and a free run compiles no constraint.
+
+#include "app/stopwatch.hpp"
+#include "sph/boundaries/fixed_particles.hpp"
+#include "sph/boundaries/parabolic_walls.hpp"
+#include "sph/eos.hpp"
+#include "sph/error.hpp"
+#include "sph/potential/uniform_field.hpp"
+#include "sph/reference/poiseuille.hpp"
+#include "sph/scene.hpp"
+#include "sph/setups/poiseuille_channel.hpp"
+#include "sph/simulation.hpp"
+#include "sph/terms/morris_fox_zhu_1997.hpp"
+#include "sph/terms/pressure.hpp"
+#include "sph/terms/watkins_1996.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <functional>
+#include <string>
+#include <vector>
+
+namespace app::poiseuille {
+
+/// The two ways of making the shear viscosity that the chapter compares.
+enum class Viscosity {
+  watkins,  ///< Watkins et al.'s two passes, curl of the curl (sph/terms/watkins_1996.hpp)
+  one_pass  ///< Morris, Fox & Zhu's one-pass Laplacian (sph/terms/morris_fox_zhu_1997.hpp)
+};
+inline const char* name(Viscosity v) {
+  return v == Viscosity::watkins ? "Watkins (two passes)" : "Morris (one pass)";
+}
+
+/// Everything a run of the channel may choose.  The defaults are Watkins et al.'s flow and the
+/// choices of the text: an isothermal gas at Mach 0.1, a fixed step of a quarter of h/c.
+struct RunChoices {
+  sph::setups::PoiseuilleChannel channel;  ///< lattice, a, N, walls (Watkins: 70, 0.4, 30)
+  double g = 3.6;                          ///< the driving acceleration (Watkins: 3.6)
+  double mu = 0.15;                        ///< \f$ \mu_s \f$ (Watkins: 0.15; \f$ \rho = 1 \f$)
+  double sound_speed = 19.2;               ///< c: 10 axis speeds
+  bool rest_pressure = false;              ///< P = c^2 rho (true) or c^2 (rho - rho_0)
+  double step_factor = 0.25;               ///< dt = step_factor min(h/c, h^2/nu)
+  double fixed_step = 0;                   ///< a given dt instead (0: the rule above)
+  bool confine = false;                    ///< the fluid moves along x only
+  bool lend_velocity = true;               ///< the walls lend eq 17's pseudo-velocity
+  bool lend_curl = true;                   ///< and eq 19's pseudo-curl
+  Viscosity viscosity = Viscosity::watkins;
+
+  sph::PoiseuilleFlow flow() const {
+    return sph::PoiseuilleFlow(channel.half_width, g, mu / channel.density);
+  }
+  double h() const { return channel.smoothing_length(); }
+  /// The step: fixed_step, or a quarter (step_factor) of the smaller of the sound crossing
+  /// time of a smoothing length, h/c, and the viscous time across it, h^2/nu.
+  double dt() const {
+    if (fixed_step > 0) return fixed_step;
+    const double nu = mu / channel.density;
+    return step_factor * std::min(h() / sound_speed, h() * h() / nu);
+  }
+};
+
+/// What a run records at each sample time.
+struct Sample {
+  double t = 0;
+  double l1_series = 0;    ///< mean |v_x - series| over the fluid, over the axis speed
+  double l1_steady = 0;    ///< mean |v_x - eq 15| over the fluid, over the axis speed
+  double alternation = 0;  ///< the rows' alternating mode, over the axis speed (see measure)
+  double vy_rms = 0;       ///< rms v_y over the fluid, over the axis speed
+  double density_excursion = 0;  ///< max |rho/rho_0 - 1| over the fluid (rho_0: the lattice's)
+  double net_force = 0;    ///< |sum over all particles of m (a - g)| over the drive M_fluid g
+  double wall_drag = 0;    ///< -(x force of walls and viscosity on the fluid) / M_fluid g
+};
+
+/// A profile: y and v_x of every fluid particle at time t.
+struct Profile {
+  double t = 0;
+  std::vector<double> y, vx;
+};
+
+/// What a run returns.
+struct ChannelRun {
+  std::vector<Sample> samples;
+  std::vector<Profile> profiles;  ///< at the requested times
+  sph::Particles<2> last;         ///< the particles at the end
+  long steps = 0;
+  double seconds = 0;   ///< wall time of the steps
+  double dt = 0;
+  double t_end = 0;
+  std::string stopped;  ///< empty, or why the run stopped early (a blow-up, with its message)
+  double stopped_at = 0;
+};
+
+/// The scene: isothermal gas, the pressure force, viscosity term Term, a uniform field g along
+/// x, fixed walls (Bounds: free fluid or fluid moving along x), and Watkins' predictor-corrector.
+template <class Gas, class Term, class Bounds>
+struct ChannelScene : sph::Scene<2> {
+  using Eos = Gas;
+  using Terms = sph::Terms<sph::PressureHernquistKatz, Term>;
+  using External = sph::UniformField<2>;
+  using Boundaries = Bounds;
+  using Integrator = sph::PredictorCorrector<2>;
+};
+
+/// \section ch08_measure What a sample measures
+///
+/// Every fluid particle keeps the row it started in (`row`, 0 at the bottom).  The rows'
+/// alternation is the amplitude of the shortest wave the rows can carry,
+/// \f[ A = \Big|\frac{1}{n_\mathrm{rows}}\sum_k (-1)^k\,\overline{\delta v}_k\Big|, \qquad
+///     \overline{\delta v}_k = \text{mean over row } k \text{ of } v_x - v_\mathrm{ref}(y), \f]
+/// in units of the axis speed: zero for any smooth error, and the size of the paper's
+/// "alternately higher and lower" rows when they appear.
+template <class Sim>
+Sample measure(const Sim& sim, const RunChoices& c, const std::vector<int>& row, int rows) {
+  const auto& p = sim.particles();
+  const sph::PoiseuilleFlow flow = c.flow();
+  const double t = sim.time(), v0 = flow.axis_speed();
+  Sample s;
+  s.t = t;
+  std::vector<double> row_sum(rows, 0.0);
+  std::vector<int> row_count(rows, 0);
+  const double rho0 = c.channel.lattice_density<sph::Kernel<2>>();
+  double fluid_mass = 0, fluid_force = 0, mv_all[2] = {0, 0};
+  long n = 0;
+  for (std::size_t i = 0; i < p.size(); ++i) {
+    for (int a = 0; a < 2; ++a) mv_all[a] += p.mass[i] * (p.acceleration[i][a] - (a == 0 ? c.g : 0));
+    if (p.kind[i] != sph::ParticleKind::fluid) continue;
+    const double y = p.position[i][1], v = p.velocity[i][0];
+    const double series = flow.from_rest(y, t, 1e-8);
+    s.l1_series += std::abs(v - series);
+    s.l1_steady += std::abs(v - flow.steady(y));
+    s.vy_rms += p.velocity[i][1] * p.velocity[i][1];
+    s.density_excursion =
+        std::max(s.density_excursion, std::abs(p.density[i] / rho0 - 1));
+    row_sum[row[i]] += v - series;
+    ++row_count[row[i]];
+    fluid_mass += p.mass[i];
+    fluid_force += p.mass[i] * (p.acceleration[i][0] - c.g);
+    ++n;
+  }
+  s.l1_series /= n * v0;
+  s.l1_steady /= n * v0;
+  s.vy_rms = std::sqrt(s.vy_rms / n) / v0;
+  double alternating = 0;
+  for (int k = 0; k < rows; ++k)
+    if (row_count[k] > 0) alternating += (k % 2 == 0 ? 1.0 : -1.0) * row_sum[k] / row_count[k];
+  s.alternation = std::abs(alternating) / rows / v0;
+  const double drive = fluid_mass * c.g;
+  s.net_force = std::hypot(mv_all[0], mv_all[1]) / drive;
+  s.wall_drag = -fluid_force / drive;
+  return s;
+}
+
+/// One run from rest to t_end, sampled every `sample_every` in time, with profiles at
+/// `profile_times`.  A run that blows up (a non-finite force, a particle through a wall) is
+/// returned with `stopped` set and its samples so far, when `allow_stop`; otherwise the error
+/// goes on to the caller.
+template <class Gas, class Term, class Bounds>
+ChannelRun run_scene(const RunChoices& c, Gas gas, Term term, Bounds bounds, double t_end,
+                     double sample_every, std::vector<double> profile_times, bool allow_stop,
+                     const std::function<void(double)>& progress) {
+  sph::Particles<2> p = c.channel.particles();
+  // rows: index of the starting row of each particle, counted from the lowest fluid row
+  const double dx = c.channel.spacing();
+  double lowest = 1;
+  for (std::size_t i = 0; i < p.size(); ++i)
+    if (p.kind[i] == sph::ParticleKind::fluid) lowest = std::min(lowest, p.position[i][1]);
+  std::vector<int> row(p.size(), 0);
+  int rows = 0;
+  for (std::size_t i = 0; i < p.size(); ++i) {
+    row[i] = static_cast<int>(std::lround((p.position[i][1] - lowest) / dx));
+    if (p.kind[i] == sph::ParticleKind::fluid) rows = std::max(rows, row[i] + 1);
+  }
+  sph::Settings settings;
+  settings.smoothing = sph::SmoothingLengthRule::fixed();
+  settings.density = sph::DensityForm::watkins();
+  settings.fixed_timestep = c.dt();
+  settings.max_steps = 50'000'000;
+  ChannelRun out;
+  out.dt = c.dt();
+  out.t_end = t_end;
+  std::sort(profile_times.begin(), profile_times.end());
+  sph::Simulation<ChannelScene<Gas, Term, Bounds>> sim(
+      std::move(p), sph::setups::PoiseuilleChannel::box(), gas, term,
+      bounds, sph::UniformField<2>(sph::Vec<2>(c.g, 0.0)), settings);
+  const auto take_profile = [&](double t) {
+    Profile pr;
+    pr.t = t;
+    for (std::size_t i = 0; i < sim.particles().size(); ++i) {
+      if (sim.particles().kind[i] != sph::ParticleKind::fluid) continue;
+      pr.y.push_back(sim.particles().position[i][1]);
+      pr.vx.push_back(sim.particles().velocity[i][0]);
+    }
+    out.profiles.push_back(std::move(pr));
+  };
+  // Steps of dt, the last one shortened to land on t_end; a sample whenever a sample time is
+  // reached (within half a step), and always one at the end.
+  std::size_t next_profile = 0;
+  double next_sample = 0;
+  const double half = 0.5 * c.dt();
+  const Stopwatch clock;
+  const auto record = [&] {
+    const double t = sim.time();
+    if (t >= next_sample - half || t >= t_end - 1e-9 * c.dt()) {
+      out.samples.push_back(measure(sim, c, row, rows));
+      while (next_sample <= t + half) next_sample += sample_every;
+      if (progress) progress(t);
+    }
+    while (next_profile < profile_times.size() && t >= profile_times[next_profile] - half)
+      take_profile(profile_times[next_profile++]);
+  };
+  try {
+    record();
+    while (t_end - sim.time() > 1e-9 * c.dt()) {
+      sim.step(t_end - sim.time());
+      ++out.steps;
+      record();
+    }
+  } catch (const sph::Error& e) {
+    // The first sign of a blow-up is usually a fluid particle at or through a plate, where the
+    // walls' eq 17 has no answer; name it, as the message of the force check may name a wall
+    // particle that merely sees it.
+    std::string why = e.what();
+    const auto& q = sim.particles();
+    for (std::size_t i = 0; i < q.size(); ++i) {
+      if (q.kind[i] == sph::ParticleKind::fluid &&
+          !(std::abs(q.position[i][1]) < c.channel.half_width)) {
+        why += "; fluid particle " + sph::show(i) + " is at y = " + sph::show(q.position[i][1]) +
+               ", at or beyond the plate at |y| = " + sph::show(c.channel.half_width);
+        break;
+      }
+    }
+    if (!allow_stop) throw sph::Error(why);
+    out.stopped = why;
+    out.stopped_at = sim.time();
+    take_profile(sim.time());  // (the velocities are still those of the last good step)
+  }
+  out.seconds = clock.seconds();
+  out.last = sim.particles();
+  return out;
+}
+
+/// The run with the choices' viscosity, walls and confinement.
+inline ChannelRun run_channel(const RunChoices& c, double t_end, double sample_every,
+                              const std::vector<double>& profile_times = {},
+                              bool allow_stop = false,
+                              const std::function<void(double)>& progress = {}) {
+  sph::ParabolicWalls<2> walls(0.0, c.channel.half_width, 1);
+  walls.lend_velocity = c.lend_velocity;
+  walls.lend_curl = c.lend_curl;
+  const auto with_bounds = [&](auto term) {
+    const auto with_gas = [&](auto gas) {
+      if (c.confine)
+        return run_scene(c, gas, term, sph::FixedParticlesMovingAlong(0), t_end, sample_every,
+                         profile_times, allow_stop, progress);
+      return run_scene(c, gas, term, sph::FixedParticles{}, t_end, sample_every, profile_times,
+                       allow_stop, progress);
+    };
+    if (c.rest_pressure) return with_gas(sph::Isothermal(c.sound_speed));
+    return with_gas(sph::WeaklyCompressible(
+        c.sound_speed, c.channel.lattice_density<sph::Kernel<2>>()));
+  };
+  if (c.viscosity == Viscosity::one_pass)
+    return with_bounds(sph::MorrisFoxZhu1997<2, sph::ParabolicWalls<2>>(c.mu, walls));
+  using Watkins =
+      sph::WatkinsViscosity<2, sph::Kernel<2>, sph::ConstantViscosity, sph::ParabolicWalls<2>>;
+  return with_bounds(Watkins(sph::ConstantViscosity{c.mu, 0.0}, walls));
+}
+
+}  // namespace app::poiseuille
