@@ -46,8 +46,8 @@ inline void reference_curve(const sph::PoiseuilleFlow& flow, double t, std::vect
 inline void fig4(const app::Chapter& chapter, const RunChoices& c, const ChannelRun& run) {
   const sph::PoiseuilleFlow flow = c.flow();
   plot::Figure figure(1, 2, {.width = 1500, .height = 650});
-  figure.title("Poiseuille flow between plates at y = \\pm" + app::format("%g", c.channel.half_width) +
-               " (Watkins et al. Fig 4)");
+  figure.title("Poiseuille flow between plates at y = \\pm" +
+               app::format("%g", c.channel.half_width) + " (Watkins et al. Fig 4)");
   figure.stamp(stamp(c, static_cast<long long>(run.last.size()), run.seconds,
                      app::format("t_\\nu = %.3f", flow.settling_time())));
   std::vector<double> y, v;
@@ -105,14 +105,18 @@ inline void history_figure(const app::Chapter& chapter, const std::string& file,
       q.push_back(value);
     }
     if (t.empty()) continue;
-    a.line(t, q, {.label = h.label, .color = plot::cycle_color(static_cast<std::size_t>(k++)), .style = h.dash, .width = 2});
+    a.line(t, q,
+           {.label = h.label,
+            .color = plot::cycle_color(static_cast<std::size_t>(k++)),
+            .style = h.dash,
+            .width = 2});
   }
   a.legend(plot::Corner::best);
   figure.save_png(chapter.figure_path(file).string());
 }
 
-/// Near the walls: v_x less eq 15 at the end of each run, every particle, against the distance
-/// from the nearer plate in particle spacings.
+/// Near the walls: v_x less the series at the end of each run, every particle, against the
+/// distance from the nearer plate in particle spacings (the last run drawn on top).
 inline void wall_figure(const app::Chapter& chapter, const RunChoices& c,
                         const std::vector<std::pair<std::string, const ChannelRun*>>& runs) {
   const sph::PoiseuilleFlow flow = c.flow();
@@ -131,7 +135,11 @@ inline void wall_figure(const app::Chapter& chapter, const RunChoices& c,
       d.push_back((c.channel.half_width - std::abs(p.y[i])) / c.channel.spacing());
       e.push_back((p.vx[i] - flow.from_rest(p.y[i], p.t, 1e-8)) / flow.axis_speed());
     }
-    a.scatter(d, e, {.label = label, .color = plot::cycle_color(static_cast<std::size_t>(k++)), .size = 3});
+    const bool last = k + 1 == static_cast<int>(runs.size());  // (on top, and larger)
+    a.scatter(d, e,
+              {.label = label,
+               .color = plot::cycle_color(static_cast<std::size_t>(k++)),
+               .size = last ? 4.5 : 3.0});
   }
   a.hline(0.0);
   a.xlim(0, 12);

@@ -24,7 +24,6 @@
 
 #include <algorithm>
 #include <cmath>
-#include <functional>
 #include <string>
 #include <vector>
 
@@ -70,13 +69,12 @@ struct RunChoices {
 /// What a run records at each sample time.
 struct Sample {
   double t = 0;
-  double l1_series = 0;    ///< mean |v_x - series| over the fluid, over the axis speed
-  double l1_steady = 0;    ///< mean |v_x - eq 15| over the fluid, over the axis speed
-  double alternation = 0;  ///< the rows' alternating mode, over the axis speed (see measure)
-  double vy_rms = 0;       ///< rms v_y over the fluid, over the axis speed
+  double l1_series = 0;          ///< mean |v_x - series| over the fluid, over the axis speed
+  double l1_steady = 0;          ///< mean |v_x - eq 15| over the fluid, over the axis speed
+  double alternation = 0;        ///< the rows' alternating mode, over the axis speed (see measure)
   double density_excursion = 0;  ///< max |rho/rho_0 - 1| over the fluid (rho_0: the lattice's)
-  double net_force = 0;    ///< |sum over all particles of m (a - g)| over the drive M_fluid g
-  double wall_drag = 0;    ///< -(x force of walls and viscosity on the fluid) / M_fluid g
+  double net_force = 0;          ///< |sum over all particles of m (a - g)| over the drive M_fluid g
+  double wall_drag = 0;          ///< -(x force of walls and viscosity on the fluid) / M_fluid g
 };
 
 /// A profile: y and v_x of every fluid particle at time t.
@@ -91,7 +89,7 @@ struct ChannelRun {
   std::vector<Profile> profiles;  ///< at the requested times
   sph::Particles<2> last;         ///< the particles at the end
   long steps = 0;
-  double seconds = 0;   ///< wall time of the steps
+  double seconds = 0;  ///< wall time of the steps
   double dt = 0;
   double t_end = 0;
   std::string stopped;  ///< empty, or why the run stopped early (a blow-up, with its message)
@@ -118,7 +116,8 @@ struct ChannelScene : sph::Scene<2> {
 /// in units of the axis speed: zero for any smooth error, and the size of the paper's
 /// "alternately higher and lower" rows when they appear.
 template <class Sim>
-Sample measure(const Sim& sim, const RunChoices& c, const std::vector<int>& row, int rows) {
+Sample measure(const Sim& sim, const RunChoices& c, double rho0, const std::vector<int>& row,
+               int rows) {
   const auto& p = sim.particles();
   const sph::PoiseuilleFlow flow = c.flow();
   const double t = sim.time(), v0 = flow.axis_speed();
@@ -126,19 +125,17 @@ Sample measure(const Sim& sim, const RunChoices& c, const std::vector<int>& row,
   s.t = t;
   std::vector<double> row_sum(rows, 0.0);
   std::vector<int> row_count(rows, 0);
-  const double rho0 = c.channel.lattice_density<sph::Kernel<2>>();
   double fluid_mass = 0, fluid_force = 0, mv_all[2] = {0, 0};
   long n = 0;
   for (std::size_t i = 0; i < p.size(); ++i) {
-    for (int a = 0; a < 2; ++a) mv_all[a] += p.mass[i] * (p.acceleration[i][a] - (a == 0 ? c.g : 0));
+    for (int a = 0; a < 2; ++a)
+      mv_all[a] += p.mass[i] * (p.acceleration[i][a] - (a == 0 ? c.g : 0));
     if (p.kind[i] != sph::ParticleKind::fluid) continue;
     const double y = p.position[i][1], v = p.velocity[i][0];
     const double series = flow.from_rest(y, t, 1e-8);
     s.l1_series += std::abs(v - series);
     s.l1_steady += std::abs(v - flow.steady(y));
-    s.vy_rms += p.velocity[i][1] * p.velocity[i][1];
-    s.density_excursion =
-        std::max(s.density_excursion, std::abs(p.density[i] / rho0 - 1));
+    s.density_excursion = std::max(s.density_excursion, std::abs(p.density[i] / rho0 - 1));
     row_sum[row[i]] += v - series;
     ++row_count[row[i]];
     fluid_mass += p.mass[i];
@@ -147,7 +144,6 @@ Sample measure(const Sim& sim, const RunChoices& c, const std::vector<int>& row,
   }
   s.l1_series /= n * v0;
   s.l1_steady /= n * v0;
-  s.vy_rms = std::sqrt(s.vy_rms / n) / v0;
   double alternating = 0;
   for (int k = 0; k < rows; ++k)
     if (row_count[k] > 0) alternating += (k % 2 == 0 ? 1.0 : -1.0) * row_sum[k] / row_count[k];
@@ -164,10 +160,10 @@ Sample measure(const Sim& sim, const RunChoices& c, const std::vector<int>& row,
 /// goes on to the caller.
 template <class Gas, class Term, class Bounds>
 ChannelRun run_scene(const RunChoices& c, Gas gas, Term term, Bounds bounds, double t_end,
-                     double sample_every, std::vector<double> profile_times, bool allow_stop,
-                     const std::function<void(double)>& progress) {
+                     double sample_every, std::vector<double> profile_times, bool allow_stop) {
+  /// Each particle's row, counted from the lowest fluid row, is fixed at the start: the
+  /// alternation of `measure` follows the rows the particles began in, wherever they go.
   sph::Particles<2> p = c.channel.particles();
-  // rows: index of the starting row of each particle, counted from the lowest fluid row
   const double dx = c.channel.spacing();
   double lowest = 1;
   for (std::size_t i = 0; i < p.size(); ++i)
@@ -178,6 +174,9 @@ ChannelRun run_scene(const RunChoices& c, Gas gas, Term term, Bounds bounds, dou
     row[i] = static_cast<int>(std::lround((p.position[i][1] - lowest) / dx));
     if (p.kind[i] == sph::ParticleKind::fluid) rows = std::max(rows, row[i] + 1);
   }
+  /// The scene's settings are the paper's: one constant h, the gather density of their eq A1,
+  /// and a constant step.  The rest density of the weakly compressible gas is the lattice's.
+  const double rho0 = c.channel.lattice_density<sph::Kernel<2>>();
   sph::Settings settings;
   settings.smoothing = sph::SmoothingLengthRule::fixed();
   settings.density = sph::DensityForm::watkins();
@@ -188,8 +187,8 @@ ChannelRun run_scene(const RunChoices& c, Gas gas, Term term, Bounds bounds, dou
   out.t_end = t_end;
   std::sort(profile_times.begin(), profile_times.end());
   sph::Simulation<ChannelScene<Gas, Term, Bounds>> sim(
-      std::move(p), sph::setups::PoiseuilleChannel::box(), gas, term,
-      bounds, sph::UniformField<2>(sph::Vec<2>(c.g, 0.0)), settings);
+      std::move(p), sph::setups::PoiseuilleChannel::box(), gas, term, bounds,
+      sph::UniformField<2>(sph::Vec<2>(c.g, 0.0)), settings);
   const auto take_profile = [&](double t) {
     Profile pr;
     pr.t = t;
@@ -200,8 +199,8 @@ ChannelRun run_scene(const RunChoices& c, Gas gas, Term term, Bounds bounds, dou
     }
     out.profiles.push_back(std::move(pr));
   };
-  // Steps of dt, the last one shortened to land on t_end; a sample whenever a sample time is
-  // reached (within half a step), and always one at the end.
+  /// Steps of dt, the last one shortened to land on t_end; a sample whenever a sample time is
+  /// reached (within half a step), and always one at the end.
   std::size_t next_profile = 0;
   double next_sample = 0;
   const double half = 0.5 * c.dt();
@@ -209,9 +208,8 @@ ChannelRun run_scene(const RunChoices& c, Gas gas, Term term, Bounds bounds, dou
   const auto record = [&] {
     const double t = sim.time();
     if (t >= next_sample - half || t >= t_end - 1e-9 * c.dt()) {
-      out.samples.push_back(measure(sim, c, row, rows));
+      out.samples.push_back(measure(sim, c, rho0, row, rows));
       while (next_sample <= t + half) next_sample += sample_every;
-      if (progress) progress(t);
     }
     while (next_profile < profile_times.size() && t >= profile_times[next_profile] - half)
       take_profile(profile_times[next_profile++]);
@@ -224,9 +222,9 @@ ChannelRun run_scene(const RunChoices& c, Gas gas, Term term, Bounds bounds, dou
       record();
     }
   } catch (const sph::Error& e) {
-    // The first sign of a blow-up is usually a fluid particle at or through a plate, where the
-    // walls' eq 17 has no answer; name it, as the message of the force check may name a wall
-    // particle that merely sees it.
+    /// A blow-up.  Its first sign is usually a fluid particle at or through a plate, where the
+    /// walls' eq 17 has no answer: the message names it, since the force check may name a
+    /// wall particle that merely sees it.
     std::string why = e.what();
     const auto& q = sim.particles();
     for (std::size_t i = 0; i < q.size(); ++i) {
@@ -250,8 +248,7 @@ ChannelRun run_scene(const RunChoices& c, Gas gas, Term term, Bounds bounds, dou
 /// The run with the choices' viscosity, walls and confinement.
 inline ChannelRun run_channel(const RunChoices& c, double t_end, double sample_every,
                               const std::vector<double>& profile_times = {},
-                              bool allow_stop = false,
-                              const std::function<void(double)>& progress = {}) {
+                              bool allow_stop = false) {
   sph::ParabolicWalls<2> walls(0.0, c.channel.half_width, 1);
   walls.lend_velocity = c.lend_velocity;
   walls.lend_curl = c.lend_curl;
@@ -259,13 +256,13 @@ inline ChannelRun run_channel(const RunChoices& c, double t_end, double sample_e
     const auto with_gas = [&](auto gas) {
       if (c.confine)
         return run_scene(c, gas, term, sph::FixedParticlesMovingAlong(0), t_end, sample_every,
-                         profile_times, allow_stop, progress);
+                         profile_times, allow_stop);
       return run_scene(c, gas, term, sph::FixedParticles{}, t_end, sample_every, profile_times,
-                       allow_stop, progress);
+                       allow_stop);
     };
     if (c.rest_pressure) return with_gas(sph::Isothermal(c.sound_speed));
-    return with_gas(sph::WeaklyCompressible(
-        c.sound_speed, c.channel.lattice_density<sph::Kernel<2>>()));
+    return with_gas(
+        sph::WeaklyCompressible(c.sound_speed, c.channel.lattice_density<sph::Kernel<2>>()));
   };
   if (c.viscosity == Viscosity::one_pass)
     return with_bounds(sph::MorrisFoxZhu1997<2, sph::ParabolicWalls<2>>(c.mu, walls));

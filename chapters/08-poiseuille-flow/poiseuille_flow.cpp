@@ -27,8 +27,8 @@
 ///  - the one-pass viscosity of Morris, Fox & Zhu (1997) as a term of the step
 ///    (lib/sph/terms/morris_fox_zhu_1997.hpp), to compare with Watkins' two passes.
 ///
-/// Our reading notes on the equations used here: \ref papers_watkins_eq15 "sect. 4.1,
-/// eqs 15-19".  Two errata matter: the printed eq 18 has the sign of the curl wrong (for
+/// Our reading notes on the equations used here:
+/// \ref papers_watkins_eq15 "sect. 4.1, eqs 15-19".  Two errata matter: the printed eq 18 has the sign of the curl wrong (for
 /// \f$ v_x = K(a^2 - y^2) \f$ the curl is \f$ +2Ky \f$; eq 19 takes a ratio and is unaffected),
 /// and the caption of Fig 4 swaps x and y (it is \f$ v_x \f$ against y).
 ///
@@ -128,7 +128,7 @@ void step1_scene(const RunChoices& c) {
 ///
 /// \show_file channel_figures.hpp
 ChannelRun step2_fig4(const app::Chapter& chapter, const RunChoices& c, double t_end) {
-  std::printf("\nStep 2: Watkins' Fig 4, from rest to t = %g\n", t_end);
+  std::printf("Step 2: Watkins' Fig 4, from rest to t = %g\n", t_end);
   std::vector<double> times;
   for (double t : {0.05, 0.1, 0.2, 0.4, 0.8}) times.push_back(t * t_end / 2.2);
   times.push_back(t_end);
@@ -142,17 +142,17 @@ ChannelRun step2_fig4(const app::Chapter& chapter, const RunChoices& c, double t
     double mean_rate = 0;
     for (double y = -flow.half_width(); y <= flow.half_width(); y += 1e-3 * flow.half_width()) {
       const double dt = 1e-4;
-      mean_rate += (flow.from_rest(y, s.t + dt, 1e-8) - flow.from_rest(y, std::max(0.0, s.t - dt),
-                                                                         1e-8)) /
-                   (s.t + dt - std::max(0.0, s.t - dt));
+      mean_rate +=
+          (flow.from_rest(y, s.t + dt, 1e-8) - flow.from_rest(y, std::max(0.0, s.t - dt), 1e-8)) /
+          (s.t + dt - std::max(0.0, s.t - dt));
     }
     mean_rate /= 2001;
     std::printf("  %5.2f  %.3e   %.3e   %.2e          %6.3f   %6.3f  %.2e\n", s.t, s.l1_series,
                 s.l1_steady, s.density_excursion, s.wall_drag, 1 - mean_rate / c.g, s.net_force);
   }
   fig4(chapter, c, run);
-  sph::write_snapshot(chapter.figure_path(format("poiseuille_t%g.dat", t_end)).string(),
-                      run.last, t_end, 1.0);
+  sph::write_snapshot(chapter.figure_path(format("poiseuille_t%g.dat", t_end)).string(), run.last,
+                      t_end, 1.0);
   return run;
 }
 
@@ -163,7 +163,7 @@ ChannelRun step2_fig4(const app::Chapter& chapter, const RunChoices& c, double t
 /// agree.  They do, to the third digit (0.00699 in all four at t = 1): the flow has no pressure
 /// gradient to get wrong, and the step is far inside both limits.
 void step3_choices(const RunChoices& base, double t) {
-  std::printf("\nStep 3: the choices left open, at t = %g\n", t);
+  std::printf("Step 3: the choices left open, at t = %g\n", t);
   std::printf("  %-26s  dt          steps  L1(series)  max|rho/rho_0-1|  wall [s]\n", "run");
   const auto row = [&](const char* label, RunChoices c) {
     const ChannelRun r = run_channel(c, t, t);
@@ -198,18 +198,17 @@ void step3_choices(const RunChoices& base, double t) {
 /// rows are driven across the flow, and at t = 0.557 a fluid particle reaches the plate, where
 /// eq 17 divides by zero; the run stops there and names it.  Both loans are needed, and the
 /// paper's sect. 4.1.1 says so: **reproduced**.
-struct WallStudy {
-  ChannelRun at_rest, no_curl;
-};
-WallStudy step4_walls(const app::Chapter& chapter, const RunChoices& base, const ChannelRun& main_run,
-                      double t_end) {
-  std::printf("\nStep 4: the walls, at t = %g\n", t_end);
+void step4_walls(const app::Chapter& chapter, const RunChoices& base, const ChannelRun& main_run,
+                 double t_end) {
+  std::printf("Step 4: the walls, at t = %g\n", t_end);
   RunChoices rest = base, own_curl = base;
   rest.lend_velocity = false;
   rest.lend_curl = false;
   own_curl.lend_curl = false;
-  WallStudy w{run_channel(rest, t_end, 0.05, {t_end}, true),
-              run_channel(own_curl, t_end, 0.05, {t_end}, true)};
+  const ChannelRun at_rest = run_channel(rest, t_end, 0.05, {t_end}, true);
+  const ChannelRun no_curl = run_channel(own_curl, t_end, 0.05, {t_end}, true);
+  /// Each run's last profile is scored against the series at its own time (a run that stopped
+  /// early is scored where it stopped), split at 2h from the nearer plate.
   const sph::PoiseuilleFlow flow = base.flow();
   const auto report = [&](const char* label, const ChannelRun& r) {
     const Profile& p = r.profiles.back();
@@ -232,13 +231,12 @@ WallStudy step4_walls(const app::Chapter& chapter, const RunChoices& base, const
   };
   std::printf("  %-36s  t      L1(series)  within 2h of a plate  farther\n", "walls");
   report("pseudo-velocity and pseudo-curl", main_run);
-  report("pseudo-velocity, the wall's own curl", w.no_curl);
-  report("walls at rest", w.at_rest);
+  report("pseudo-velocity, the wall's own curl", no_curl);
+  report("walls at rest", at_rest);
   wall_figure(chapter, base,
-              {{"eqs 17 and 19 (Watkins)", &main_run},
-               {"eq 17, the wall's own curl", &w.no_curl},
-               {"walls at rest", &w.at_rest}});
-  return w;
+              {{"walls at rest", &at_rest},
+               {"eq 17, the wall's own curl", &no_curl},
+               {"eqs 17 and 19 (Watkins), drawn last", &main_run}});
 }
 
 /// \section ch08_step5 Step 5: the alternating rows
@@ -249,7 +247,7 @@ WallStudy step4_walls(const app::Chapter& chapter, const RunChoices& base, const
 /// move along x suppresses it for more than a thousand steps.  We run the flow with the
 /// pressure \f$ c^2\rho \f$ -- the isothermal gas, rest pressure included -- free and confined
 /// to x, and with \f$ c^2(\rho - \rho_0) \f$, and follow the rows' alternation A (defined in
-/// `measure`, shown in Step 1) and the rms of \f$ v_y \f$.
+/// `measure`, shown in Step 1).
 ///
 /// **What drives it.**  Not Watkins' viscosity: the same rows appear with the one-pass
 /// viscosity.  It is the
@@ -269,11 +267,12 @@ WallStudy step4_walls(const app::Chapter& chapter, const RunChoices& base, const
 /// as the free run, and saturate near 1e-3 of the axis speed (the figure).  The paper's claim
 /// that confinement keeps the steady state is therefore **reproduced** only as far as the run
 /// survives, **not** as a cure: here the cure is the pressure without its background.
-struct InstabilityStudy {
-  std::vector<ChannelRun> runs;
-  std::vector<std::string> labels;
-  std::vector<double> growth;  // e-folding rate of v_y rms, or 0
-};
+/// The largest alternation a run saw.
+double largest_alternation(const ChannelRun& r) {
+  double largest = 0;
+  for (const Sample& sample : r.samples) largest = std::max(largest, sample.alternation);
+  return largest;
+}
 
 /// The growth rate of a quantity over the samples where it lies between lo and hi: the slope of
 /// a least-squares line through its logarithm.
@@ -294,10 +293,13 @@ double growth_rate(const ChannelRun& r, double Sample::*q, double lo, double hi)
   return (n * stl - st * sl) / (n * stt - st * st);
 }
 
-InstabilityStudy step5_rows(const app::Chapter& chapter, const RunChoices& base,
-                            const ChannelRun& main_run, double t_end) {
-  std::printf("\nStep 5: the alternating rows\n");
-  InstabilityStudy study;
+void step5_rows(const app::Chapter& chapter, const RunChoices& base, const ChannelRun& main_run,
+                double t_end) {
+  std::printf("Step 5: the alternating rows\n");
+  /// Each run goes on until it blows up (the stop is reported, not thrown), sampled every 0.005,
+  /// and its growth rate is fitted to the first rise of A between 1e-12 and 1e-4.
+  std::vector<ChannelRun> runs;
+  std::vector<std::string> labels;
   const auto run = [&](const std::string& label, RunChoices c) {
     ChannelRun r = run_channel(c, t_end, 0.005, {}, true);
     const double rate = growth_rate(r, &Sample::alternation, 1e-12, 1e-4);
@@ -305,11 +307,13 @@ InstabilityStudy step5_rows(const app::Chapter& chapter, const RunChoices& base,
                 r.stopped.empty() ? format("ran to t = %g", t_end).c_str()
                                   : format("stopped at t = %.3f", r.stopped_at).c_str(),
                 rate);
-    if (!r.stopped.empty()) std::printf("%s\n", app::wrap("      (" + r.stopped + ")", 100, 6).c_str());
-    study.runs.push_back(std::move(r));
-    study.labels.push_back(label);
-    study.growth.push_back(rate);
+    if (!r.stopped.empty())
+      std::printf("%s\n", app::wrap("      (" + r.stopped + ")", 100, 6).c_str());
+    runs.push_back(std::move(r));
+    labels.push_back(label);
   };
+  /// The runs: the background pressure free and confined, at three sound speeds, and with the
+  /// one-pass viscosity; then Step 2's run without the background, for comparison.
   RunChoices rest = base;
   rest.rest_pressure = true;
   run("P = c^2 rho, free", rest);
@@ -324,22 +328,21 @@ InstabilityStudy step5_rows(const app::Chapter& chapter, const RunChoices& base,
   RunChoices one_pass = rest;
   one_pass.viscosity = Viscosity::one_pass;
   run("P = c^2 rho, free, one-pass viscosity", one_pass);
-  double largest = 0;
-  for (const Sample& sample : main_run.samples) largest = std::max(largest, sample.alternation);
-  std::printf("  %-40s largest alternation %.1e up to t = %g\n", "P = c^2 (rho - rho_0), free (Step 2)",
-              largest, main_run.t_end);
+  std::printf("  %-40s largest alternation %.1e up to t = %g\n",
+              "P = c^2 (rho - rho_0), free (Step 2)", largest_alternation(main_run),
+              main_run.t_end);
   std::vector<History> lines;
-  for (std::size_t k = 0; k < study.runs.size(); ++k) {
-    std::string label = study.labels[k];  // (the figure sets rho as a Greek letter)
+  for (std::size_t k = 0; k < runs.size(); ++k) {
+    std::string label = labels[k];  // (the figure sets rho as a Greek letter)
     label.replace(label.find("c^2 rho"), 7, "c^2\\rho");
-    lines.push_back({label, &study.runs[k], &Sample::alternation});
+    lines.push_back({label, &runs[k], &Sample::alternation});
   }
   lines.push_back({"P = c^2(\\rho - \\rho_0), free (Step 2)", &main_run, &Sample::alternation,
                    plot::Dash::dashed});
-  history_figure(chapter, "rows.png", "The alternating rows: amplitude of the rows' alternation",
-                 "A / v_{axis}", lines,
-                 stamp(base, static_cast<long long>(main_run.last.size()), -1, "samples every 0.005"));
-  return study;
+  history_figure(
+      chapter, "rows.png", "The alternating rows: amplitude of the rows' alternation",
+      "A / v_{axis}", lines,
+      stamp(base, static_cast<long long>(main_run.last.size()), -1, "samples every 0.005"));
 }
 
 /// \section ch08_step6 Step 6: which viscosity, error against run time, and the stiff cases
@@ -356,11 +359,12 @@ InstabilityStudy step5_rows(const app::Chapter& chapter, const RunChoices& base,
 /// accurate at every resolution from 50 a side, and cost about the same per step (the gradient
 /// pass is a second loop over the same list); the one pass conserves momentum exactly, the two
 /// passes do not (Step 2's last column).
-sph::ErrorVsTime step6_viscosities(const app::Chapter& chapter, const RunChoices& base,
-                                   double t, bool quick) {
-  std::printf("\nStep 6: which viscosity, at t = %g\n", t);
+sph::ErrorVsTime step6_viscosities(const app::Chapter& chapter, const RunChoices& base, double t,
+                                   bool quick) {
+  std::printf("Step 6: which viscosity, at t = %g\n", t);
   sph::ErrorVsTime study(format("Poiseuille flow from rest, t = %g", t));
-  const std::vector<int> sides = quick ? std::vector<int>{36, 48} : std::vector<int>{36, 50, 70, 100};
+  const std::vector<int> sides =
+      quick ? std::vector<int>{36, 48} : std::vector<int>{36, 50, 70, 100};
   for (Viscosity v : {Viscosity::watkins, Viscosity::one_pass}) {
     for (int side : sides) {
       RunChoices c = base;
@@ -368,15 +372,16 @@ sph::ErrorVsTime step6_viscosities(const app::Chapter& chapter, const RunChoices
       c.channel.side = side;
       const ChannelRun r = run_channel(c, t, t);
       const Sample& s = r.samples.back();
-      study.add({name(v), side * side, c.channel.spacing(), r.seconds,
-                 {{"L1(v_x)", s.l1_series}}});
+      study.add({name(v), side * side, c.channel.spacing(), r.seconds, {{"L1(v_x)", s.l1_series}}});
       std::printf("  %-22s %3d x %-3d dt %.2e  %6ld steps  %6.1f s  L1(series) %.3e\n", name(v),
                   side, side, r.dt, r.steps, r.seconds, s.l1_series);
     }
   }
   std::printf("%s", study.table().c_str());
   app::ErrorFigureOptions options;
-  options.stamp = plot::format_stamp(stamp(base, -1, -1, "L1 of v_x against the start-up series"));
+  plot::Stamp s = stamp(base, -1, -1, "");
+  s.scheme = "both viscosities, constant h, predictor-corrector";
+  options.stamp = plot::format_stamp(s);
   app::save_error_figure(study, chapter.figure_path("error_vs_time.png"), options);
   return study;
 }
@@ -386,7 +391,7 @@ sph::ErrorVsTime step6_viscosities(const app::Chapter& chapter, const RunChoices
 /// stays a quarter of h/c), walls one row thick, and Re = 20 (g four times larger, and c with
 /// it to keep Mach 0.1), the last to the end time of Step 2.
 void step6_stiff(const RunChoices& base, double t, double t_re20) {
-  std::printf("\nStep 6 (continued): stiff and extreme cases\n");
+  std::printf("Step 6 (continued): stiff and extreme cases\n");
   const auto run = [&](const std::string& label, RunChoices c, double t_end) {
     const ChannelRun r = run_channel(c, t_end, t_end / 20, {}, true);
     const Sample& s = r.samples.back();
@@ -394,8 +399,8 @@ void step6_stiff(const RunChoices& base, double t, double t_re20) {
       std::printf("  %-34s dt %.2e: ran, L1(series) %.3e at t = %.3f\n", label.c_str(), r.dt,
                   s.l1_series, s.t);
     } else {
-      std::printf("  %-34s dt %.2e: stopped at t = %.4f after %ld steps\n%s\n", label.c_str(),
-                  r.dt, r.stopped_at, r.steps, app::wrap("      (" + r.stopped + ")", 100, 6).c_str());
+      std::printf("  %-34s dt %.2e: stopped at t = %.4f after %ld steps\n%s\n", label.c_str(), r.dt,
+                  r.stopped_at, r.steps, app::wrap("      (" + r.stopped + ")", 100, 6).c_str());
     }
   };
   const double limit = 0.125 * base.h() * base.h() * base.channel.density / (4.0 / 3.0 * base.mu);
@@ -480,7 +485,8 @@ int main(int argc, char** argv) {
         .check(app::between(16, 200));
     chapter.parameter("--t-end", par.t_end, "end time of the run of Fig 4", 0.6)
         .check(app::between(0.01, 20));
-    chapter.parameter("--sound-speed", par.sound_speed, "sound speed c").check(app::between(0.1, 1000));
+    chapter.parameter("--sound-speed", par.sound_speed, "sound speed c")
+        .check(app::between(0.1, 1000));
     chapter.parameter("--step-factor", par.step_factor, "dt = factor min(h/c, h^2/nu)")
         .check(app::between(0.01, 4));
     chapter.parameter("--study-time", par.study_time, "end time of the runs of Steps 3 and 6", 0.3)
@@ -491,19 +497,26 @@ int main(int argc, char** argv) {
     c.channel.side = par.side;
     c.sound_speed = par.sound_speed;
     c.step_factor = par.step_factor;
+    /// The steps, in order, a blank line between them.
     step1_scene(c);
+    std::puts("");
     const ChannelRun main_run = step2_fig4(chapter, c, par.t_end);
+    std::puts("");
     step3_choices(c, par.study_time);
+    std::puts("");
     step4_walls(chapter, c, main_run, par.t_end);
+    std::puts("");
     step5_rows(chapter, c, main_run, std::min(par.t_end, 0.5));
+    std::puts("");
     step6_viscosities(chapter, c, par.study_time, par.quick);
+    std::puts("");
     step6_stiff(c, par.study_time, par.t_end);
     const Sample& end = main_run.samples.back();
     /// The checks: Fig 4 against eq 15 at the end (at full resolution the bias of Step 6, under
     /// --quick a run not yet settled, hence the series), and the rows at round-off.
-    double largest = 0;
-    for (const Sample& sample : main_run.samples) largest = std::max(largest, sample.alternation);
-    chapter.check(end.l1_series < 0.02, format("L1 against the series %.3e exceeds 0.02", end.l1_series));
+    const double largest = largest_alternation(main_run);
+    chapter.check(end.l1_series < 0.02,
+                  format("L1 against the series %.3e exceeds 0.02", end.l1_series));
     chapter.check(largest < 1e-12, format("the rows alternate (%.1e of the axis speed)", largest));
     chapter.summary("error", format("L1(v_x) against eq 15 at t = %g: %.2e of the axis speed",
                                     par.t_end, end.l1_steady));

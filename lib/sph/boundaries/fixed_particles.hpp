@@ -52,15 +52,16 @@ struct FixedParticlesMovingAlong : FixedParticles {
   explicit FixedParticlesMovingAlong(int along) : axis(along) {}
   template <int D>
   void validate(const Particles<D>& p) const {
-    require(axis >= 0 && axis < D, "fixed particles moving along an axis: the axis (" +
-                                       show(axis) + ") must be one of the box's");
+    require(axis >= 0 && axis < D, "fixed particles moving along an axis: the axis (" + show(axis) +
+                                       ") must be one of the box's");
     FixedParticles::validate(p);
     for (std::size_t i = 0; i < p.size(); ++i) {
       for (int a = 0; a < D; ++a) {
         if (a != axis && p.kind[i] == ParticleKind::fluid && p.velocity[i][a] != 0) {
-          throw Error("particle " + show(i) + " starts with a velocity across the axis its motion "
-                      "is confined to (" + show(p.velocity[i][a]) + " along " + axis_name(a) +
-                      ")");
+          throw Error("particle " + show(i) +
+                      " starts with a velocity across the axis its motion "
+                      "is confined to (" +
+                      show(p.velocity[i][a]) + " along " + axis_name(a) + ")");
         }
       }
     }

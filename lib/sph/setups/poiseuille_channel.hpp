@@ -54,11 +54,13 @@ struct PoiseuilleChannel {
 
   /// The refusals: a channel too narrow for one fluid row, or walls that do not reach.
   void validate() const {
-    require(side >= 4 && side <= 4000, "Poiseuille channel: the side must hold 4 to 4000 particles "
-                                       "(got " + show(side) + ")");
-    require(std::isfinite(half_width) && half_width > 0 && half_width < 0.5,
-            "Poiseuille channel: the half-width a must lie in (0, 0.5) (got " + show(half_width) +
-                ")");
+    require(side >= 4 && side <= 4000,
+            "Poiseuille channel: the side must hold 4 to 4000 particles "
+            "(got " +
+                show(side) + ")");
+    require(
+        std::isfinite(half_width) && half_width > 0 && half_width < 0.5,
+        "Poiseuille channel: the half-width a must lie in (0, 0.5) (got " + show(half_width) + ")");
     require(half_width >= spacing(), "Poiseuille channel: a = " + show(half_width) +
                                          " holds no fluid row at spacing " + show(spacing()));
     require(std::isfinite(neighbours) && neighbours >= 4 && neighbours <= 400,

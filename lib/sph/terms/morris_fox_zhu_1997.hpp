@@ -43,9 +43,9 @@ struct MorrisFoxZhu1997 {
 
   MorrisFoxZhu1997() = default;
   explicit MorrisFoxZhu1997(double mu_s, Walls w = {}) : shear(mu_s), walls(std::move(w)) {
-    require(std::isfinite(mu_s) && mu_s >= 0,
-            "one-pass viscosity: the shear viscosity must be non-negative (got " + show(mu_s) +
-                ")");
+    require(
+        std::isfinite(mu_s) && mu_s >= 0,
+        "one-pass viscosity: the shear viscosity must be non-negative (got " + show(mu_s) + ")");
   }
 
   std::string describe() const {
@@ -62,8 +62,8 @@ struct MorrisFoxZhu1997 {
         walls.velocity_difference(p.i, p.j, in, v_ij);  // eq 17 of Watkins et al.
     }
     // r . grad_i W = gradient_factor r^2
-    const double factor = in.m[p.j] * 2 * shear / (in.rho[p.i] * in.rho[p.j]) *
-                          p.gradient_factor * p.r2 / (p.r2 + 0.01 * p.h_bar * p.h_bar);
+    const double factor = in.m[p.j] * 2 * shear / (in.rho[p.i] * in.rho[p.j]) * p.gradient_factor *
+                          p.r2 / (p.r2 + 0.01 * p.h_bar * p.h_bar);
     PairAcceleration out;
     double v2 = 0;
     for (int a = 0; a < D; ++a) {
