@@ -116,34 +116,39 @@ inline void history_figure(const app::Chapter& chapter, const std::string& file,
 }
 
 /// Near the walls: v_x less the series at the end of each run, every particle, against the
-/// distance from the nearer plate in particle spacings (the last run drawn on top).
+/// distance from the nearer plate in particle spacings (the last run drawn on top), at two
+/// scales.
 inline void wall_figure(const app::Chapter& chapter, const RunChoices& c,
                         const std::vector<std::pair<std::string, const ChannelRun*>>& runs) {
   const sph::PoiseuilleFlow flow = c.flow();
-  plot::Figure figure(1, 1, {.width = 1100, .height = 700});
+  plot::Figure figure(1, 2, {.width = 1500, .height = 650});
   figure.title("The walls' pseudo-velocity and pseudo-curl: error of v_x near the plates");
   figure.stamp(stamp(c, static_cast<long long>(runs.front().second->last.size()), -1,
                      app::format("t = %.2f", runs.front().second->t_end)));
-  plot::Axes& a = figure.panel(0, 0);
-  a.xlabel("distance from the nearer plate  [particle spacings]")
-      .ylabel("(v_x - series) / v_{axis}");
-  int k = 0;
-  for (const auto& [label, run] : runs) {
-    std::vector<double> d, e;
-    const Profile& p = run->profiles.back();
-    for (std::size_t i = 0; i < p.y.size(); ++i) {
-      d.push_back((c.channel.half_width - std::abs(p.y[i])) / c.channel.spacing());
-      e.push_back((p.vx[i] - flow.from_rest(p.y[i], p.t, 1e-8)) / flow.axis_speed());
+  /// Panel (a) shows every error; panel (b) the same points on a scale a hundred times finer,
+  /// where the small errors of Watkins' walls can be seen beside those of walls at rest.
+  for (int panel = 0; panel < 2; ++panel) {
+    plot::Axes& a = figure.panel(0, panel);
+    a.title(panel == 0 ? "every particle" : "the same, magnified");
+    a.xlabel("distance from the nearer plate  [particle spacings]")
+        .ylabel("(v_x - series) / v_{axis}");
+    a.hline(0.0);
+    int k = 0;
+    for (const auto& [label, run] : runs) {
+      std::vector<double> d, e;
+      const Profile& p = run->profiles.back();
+      for (std::size_t i = 0; i < p.y.size(); ++i) {
+        d.push_back((c.channel.half_width - std::abs(p.y[i])) / c.channel.spacing());
+        e.push_back((p.vx[i] - flow.from_rest(p.y[i], p.t, 1e-8)) / flow.axis_speed());
+      }
+      a.scatter(
+          d, e,
+          {.label = label, .color = plot::cycle_color(static_cast<std::size_t>(k++)), .size = 3.0});
     }
-    const bool last = k + 1 == static_cast<int>(runs.size());  // (on top, and larger)
-    a.scatter(d, e,
-              {.label = label,
-               .color = plot::cycle_color(static_cast<std::size_t>(k++)),
-               .size = last ? 4.5 : 3.0});
+    a.xlim(0, 12);
+    if (panel == 1) a.ylim(-0.05, 0.25);
+    a.legend(plot::Corner::upper_right);
   }
-  a.hline(0.0);
-  a.xlim(0, 12);
-  a.legend(plot::Corner::best);
   figure.save_png(chapter.figure_path("walls.png").string());
 }
 

@@ -28,9 +28,10 @@
 ///    (lib/sph/terms/morris_fox_zhu_1997.hpp), to compare with Watkins' two passes.
 ///
 /// Our reading notes on the equations used here:
-/// \ref papers_watkins_eq15 "sect. 4.1, eqs 15-19".  Two errata matter: the printed eq 18 has the sign of the curl wrong (for
-/// \f$ v_x = K(a^2 - y^2) \f$ the curl is \f$ +2Ky \f$; eq 19 takes a ratio and is unaffected),
-/// and the caption of Fig 4 swaps x and y (it is \f$ v_x \f$ against y).
+/// \ref papers_watkins_eq15 "sect. 4.1, eqs 15-19".  Two errata matter: the printed eq 18 has
+/// the sign of the curl wrong (for \f$ v_x = K(a^2 - y^2) \f$ the curl is \f$ +2Ky \f$; eq 19
+/// takes a ratio and is unaffected), and the caption of Fig 4 swaps x and y (it is \f$ v_x \f$
+/// against y).
 ///
 /// The program has six steps, each a function below, and `main` calls them in order:
 ///  1. the scene, and the choices the paper leaves open;
@@ -236,7 +237,7 @@ void step4_walls(const app::Chapter& chapter, const RunChoices& base, const Chan
   wall_figure(chapter, base,
               {{"walls at rest", &at_rest},
                {"eq 17, the wall's own curl", &no_curl},
-               {"eqs 17 and 19 (Watkins), drawn last", &main_run}});
+               {"eqs 17 and 19 (Watkins)", &main_run}});
 }
 
 /// \section ch08_step5 Step 5: the alternating rows
