@@ -13,11 +13,13 @@
 #include "sph/boundaries/parabolic_walls.hpp"
 #include "sph/eos.hpp"
 #include "sph/error.hpp"
+#include "sph/forces.hpp"
 #include "sph/potential/uniform_field.hpp"
 #include "sph/reference/poiseuille.hpp"
 #include "sph/scene.hpp"
 #include "sph/setups/poiseuille_channel.hpp"
 #include "sph/simulation.hpp"
+#include "sph/terms/monaghan_shear_viscosity.hpp"
 #include "sph/terms/morris_fox_zhu_1997.hpp"
 #include "sph/terms/pressure.hpp"
 #include "sph/terms/watkins_1996.hpp"
@@ -29,13 +31,37 @@
 
 namespace app::poiseuille {
 
-/// The two ways of making the shear viscosity that the chapter compares.
+/// The three ways of making the shear viscosity that the chapter compares.
 enum class Viscosity {
-  watkins,  ///< Watkins et al.'s two passes, curl of the curl (sph/terms/watkins_1996.hpp)
-  one_pass  ///< Morris, Fox & Zhu's one-pass Laplacian (sph/terms/morris_fox_zhu_1997.hpp)
+  watkins,    ///< Watkins et al.'s two passes, curl of the curl (sph/terms/watkins_1996.hpp)
+  one_pass,   ///< Morris, Fox & Zhu's one-pass Laplacian (sph/terms/morris_fox_zhu_1997.hpp)
+  artificial  ///< Monaghan's linear term on all pairs (sph/terms/monaghan_shear_viscosity.hpp)
 };
 inline const char* name(Viscosity v) {
-  return v == Viscosity::watkins ? "Watkins (two passes)" : "Morris (one pass)";
+  switch (v) {
+    case Viscosity::watkins:
+      return "Watkins (two passes)";
+    case Viscosity::one_pass:
+      return "Morris (one pass)";
+    case Viscosity::artificial:
+      return "Monaghan AV, all pairs";
+  }
+  return "?";
+}
+/// The explicit viscous limit each term declares for its time step, in units of
+/// \f$ h^2/\nu \f$: \f$ 0.125 \f$ of Morris et al. on the coefficient that damps the fastest
+/// motion -- \f$ \nu \f$ for the one pass, \f$ \nu_b + \tfrac43\nu \f$ for Watkins' term
+/// (\f$ \tfrac43\nu \f$ here) and for Monaghan's (\f$ 3\nu \f$, its bulk part included).
+inline double viscous_limit_factor(Viscosity v) {
+  switch (v) {
+    case Viscosity::watkins:
+      return 0.125 * 3.0 / 4.0;
+    case Viscosity::one_pass:
+      return 0.125;
+    case Viscosity::artificial:
+      return 0.125 / 3.0;
+  }
+  return 0;
 }
 
 /// Everything a run of the channel may choose.  The defaults are Watkins et al.'s flow and the
@@ -46,23 +72,27 @@ struct RunChoices {
   double mu = 0.15;                        ///< \f$ \mu_s \f$ (Watkins: 0.15; \f$ \rho = 1 \f$)
   double sound_speed = 19.2;               ///< c: 10 axis speeds
   bool rest_pressure = false;              ///< P = c^2 rho (true) or c^2 (rho - rho_0)
-  double step_factor = 0.25;               ///< dt = step_factor min(h/c, h^2/nu)
+  double step_factor = 0.25;               ///< dt = min(step_factor h/c, the viscous limit)
   double fixed_step = 0;                   ///< a given dt instead (0: the rule above)
   bool confine = false;                    ///< the fluid moves along x only
   bool lend_velocity = true;               ///< the walls lend eq 17's pseudo-velocity
   bool lend_curl = true;                   ///< and eq 19's pseudo-curl
+  bool start_steady = false;               ///< start on eq 15's parabola, not at rest
   Viscosity viscosity = Viscosity::watkins;
 
   sph::PoiseuilleFlow flow() const {
     return sph::PoiseuilleFlow(channel.half_width, g, mu / channel.density);
   }
   double h() const { return channel.smoothing_length(); }
-  /// The step: fixed_step, or a quarter (step_factor) of the smaller of the sound crossing
-  /// time of a smoothing length, h/c, and the viscous time across it, h^2/nu.
+  /// The step: fixed_step, or the smaller of a quarter (step_factor) of the sound crossing
+  /// time of a smoothing length, h/c, and the viscous limit the viscosity term declares.
   double dt() const {
     if (fixed_step > 0) return fixed_step;
-    const double nu = mu / channel.density;
-    return step_factor * std::min(h() / sound_speed, h() * h() / nu);
+    return std::min(step_factor * h() / sound_speed, viscous_limit());
+  }
+  /// The viscous limit of the term (viscous_limit_factor) for this lattice's h.
+  double viscous_limit() const {
+    return viscous_limit_factor(viscosity) * h() * h() * channel.density / mu;
   }
 };
 
@@ -73,14 +103,16 @@ struct Sample {
   double l1_steady = 0;          ///< mean |v_x - eq 15| over the fluid, over the axis speed
   double alternation = 0;        ///< the rows' alternating mode, over the axis speed (see measure)
   double density_excursion = 0;  ///< max |rho/rho_0 - 1| over the fluid (rho_0: the lattice's)
-  double net_force = 0;          ///< |sum over all particles of m (a - g)| over the drive M_fluid g
   double wall_drag = 0;          ///< -(x force of walls and viscosity on the fluid) / M_fluid g
+  double from_walls = 0;         ///< x force of the wall particles' pairs on the fluid / M_fluid g
+  double from_gas = 0;           ///< |force of the fluid's pairs among themselves| / M_fluid g
 };
 
-/// A profile: y and v_x of every fluid particle at time t.
+/// A profile: y and v_x of every fluid particle at time t, and all the particles then.
 struct Profile {
   double t = 0;
   std::vector<double> y, vx;
+  sph::Particles<2> particles;
 };
 
 /// What a run returns.
@@ -125,11 +157,9 @@ Sample measure(const Sim& sim, const RunChoices& c, double rho0, const std::vect
   s.t = t;
   std::vector<double> row_sum(rows, 0.0);
   std::vector<int> row_count(rows, 0);
-  double fluid_mass = 0, fluid_force = 0, mv_all[2] = {0, 0};
+  double fluid_mass = 0, fluid_force = 0;
   long n = 0;
   for (std::size_t i = 0; i < p.size(); ++i) {
-    for (int a = 0; a < 2; ++a)
-      mv_all[a] += p.mass[i] * (p.acceleration[i][a] - (a == 0 ? c.g : 0));
     if (p.kind[i] != sph::ParticleKind::fluid) continue;
     const double y = p.position[i][1], v = p.velocity[i][0];
     const double series = flow.from_rest(y, t, 1e-8);
@@ -149,8 +179,32 @@ Sample measure(const Sim& sim, const RunChoices& c, double rho0, const std::vect
     if (row_count[k] > 0) alternating += (k % 2 == 0 ? 1.0 : -1.0) * row_sum[k] / row_count[k];
   s.alternation = std::abs(alternating) / rows / v0;
   const double drive = fluid_mass * c.g;
-  s.net_force = std::hypot(mv_all[0], mv_all[1]) / drive;
   s.wall_drag = -fluid_force / drive;
+  /// The momentum account walks the pairs once more, with the scene's own pair function, and
+  /// sorts the force on the fluid into what its wall neighbours give it and what the fluid
+  /// gives itself.  For a viscosity whose pairs push equally and oppositely the second is zero
+  /// to round-off, and the gas's momentum changes only by the drive and the walls' push, which
+  /// the walls take up; for one that does not, it is the part of the fluid's force that no
+  /// pair hands to a wall.  (The walk sees the state after the step with the derived fields of
+  /// the step's one evaluation, at its midpoint: the split is exact, its sum differs from the
+  /// step's force by a part in \f$ \delta t \f$.)
+  const auto in = sim.view();
+  double walls_x = 0, gas[2] = {0, 0};
+  for (std::size_t i = 0; i < p.size(); ++i) {
+    if (p.kind[i] != sph::ParticleKind::fluid) continue;
+    for (const auto& nb : sim.neighbours().of(i)) {
+      const auto pf = sph::pair_force<2, typename Sim::K>(in, sim.terms(), i, nb);
+      double a[2];
+      for (int k = 0; k < 2; ++k) a[k] = -pf.f * pf.r_ij[k] + pf.extra.a[k];
+      if (p.kind[nb.index] == sph::ParticleKind::fluid) {
+        for (int k = 0; k < 2; ++k) gas[k] += p.mass[i] * a[k];
+      } else {
+        walls_x += p.mass[i] * a[0];
+      }
+    }
+  }
+  s.from_walls = walls_x / drive;
+  s.from_gas = std::hypot(gas[0], gas[1]) / drive;
   return s;
 }
 
@@ -165,6 +219,11 @@ ChannelRun run_scene(const RunChoices& c, Gas gas, Term term, Bounds bounds, dou
   /// alternation of `measure` follows the rows the particles began in, wherever they go.
   sph::Particles<2> p = c.channel.particles();
   const double dx = c.channel.spacing();
+  if (c.start_steady) {
+    for (std::size_t i = 0; i < p.size(); ++i)
+      if (p.kind[i] == sph::ParticleKind::fluid)
+        p.velocity[i][0] = c.flow().steady(p.position[i][1]);
+  }
   double lowest = 1;
   for (std::size_t i = 0; i < p.size(); ++i)
     if (p.kind[i] == sph::ParticleKind::fluid) lowest = std::min(lowest, p.position[i][1]);
@@ -197,6 +256,7 @@ ChannelRun run_scene(const RunChoices& c, Gas gas, Term term, Bounds bounds, dou
       pr.y.push_back(sim.particles().position[i][1]);
       pr.vx.push_back(sim.particles().velocity[i][0]);
     }
+    pr.particles = sim.particles();
     out.profiles.push_back(std::move(pr));
   };
   /// Steps of dt, the last one shortened to land on t_end; a sample whenever a sample time is
@@ -266,6 +326,10 @@ inline ChannelRun run_channel(const RunChoices& c, double t_end, double sample_e
   };
   if (c.viscosity == Viscosity::one_pass)
     return with_bounds(sph::MorrisFoxZhu1997<2, sph::ParabolicWalls<2>>(c.mu, walls));
+  if (c.viscosity == Viscosity::artificial) {
+    return with_bounds(sph::MonaghanShearViscosity<2, sph::ParabolicWalls<2>>::for_viscosity(
+        c.mu / c.channel.density, c.sound_speed, c.h(), walls));
+  }
   using Watkins =
       sph::WatkinsViscosity<2, sph::Kernel<2>, sph::ConstantViscosity, sph::ParabolicWalls<2>>;
   return with_bounds(Watkins(sph::ConstantViscosity{c.mu, 0.0}, walls));
