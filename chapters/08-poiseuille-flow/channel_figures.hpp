@@ -94,6 +94,7 @@ inline void history_figure(const app::Chapter& chapter, const std::string& file,
   figure.title(title);
   figure.stamp(s);
   plot::Axes& a = figure.panel(0, 0);
+  a.letter("");
   a.xlabel("t  [time]").ylabel(ylabel).yscale(plot::Scale::log);
   int k = 0;
   for (const History& h : lines) {
@@ -125,15 +126,16 @@ inline void wall_figure(const app::Chapter& chapter, const RunChoices& c,
   figure.title("The walls' pseudo-velocity and pseudo-curl: error of v_x near the plates");
   figure.stamp(stamp(c, static_cast<long long>(runs.front().second->last.size()), -1,
                      app::format("t = %.2f", runs.front().second->t_end)));
-  /// Panel (a) shows every error; panel (b) the same points on a scale a hundred times finer,
-  /// where the small errors of Watkins' walls can be seen beside those of walls at rest.
+  /// Panel (a) shows every error; panel (b) the same points on a scale about thirty times
+  /// finer, where the small errors of Watkins' walls can be seen beside those of walls at
+  /// rest.  The last run is drawn on top with larger dots.
   for (int panel = 0; panel < 2; ++panel) {
     plot::Axes& a = figure.panel(0, panel);
     a.title(panel == 0 ? "every particle" : "the same, magnified");
     a.xlabel("distance from the nearer plate  [particle spacings]")
         .ylabel("(v_x - series) / v_{axis}");
     a.hline(0.0);
-    int k = 0;
+    std::size_t k = 0;
     for (const auto& [label, run] : runs) {
       std::vector<double> d, e;
       const Profile& p = run->profiles.back();
@@ -141,9 +143,11 @@ inline void wall_figure(const app::Chapter& chapter, const RunChoices& c,
         d.push_back((c.channel.half_width - std::abs(p.y[i])) / c.channel.spacing());
         e.push_back((p.vx[i] - flow.from_rest(p.y[i], p.t, 1e-8)) / flow.axis_speed());
       }
-      a.scatter(
-          d, e,
-          {.label = label, .color = plot::cycle_color(static_cast<std::size_t>(k++)), .size = 3.0});
+      const bool last = k + 1 == runs.size();
+      const std::string name = run->stopped.empty()
+                                   ? label
+                                   : label + app::format(" (stopped, t = %.3f)", run->stopped_at);
+      a.scatter(d, e, {.label = name, .color = plot::cycle_color(k++), .size = last ? 6.0 : 3.0});
     }
     a.xlim(0, 12);
     if (panel == 1) a.ylim(-0.05, 0.25);

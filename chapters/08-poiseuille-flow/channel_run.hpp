@@ -65,7 +65,8 @@ inline double viscous_limit_factor(Viscosity v) {
 }
 
 /// Everything a run of the channel may choose.  The defaults are Watkins et al.'s flow and the
-/// choices of the text: an isothermal gas at Mach 0.1, a fixed step of a quarter of h/c.
+/// choices of the text: a weakly compressible gas at Mach 0.1, a fixed step of a quarter of h/c
+/// or the viscous limit of the term, whichever is smaller.
 struct RunChoices {
   sph::setups::PoiseuilleChannel channel;  ///< lattice, a, N, walls (Watkins: 70, 0.4, 30)
   double g = 3.6;                          ///< the driving acceleration (Watkins: 3.6)
@@ -103,7 +104,7 @@ struct Sample {
   double l1_steady = 0;          ///< mean |v_x - eq 15| over the fluid, over the axis speed
   double alternation = 0;        ///< the rows' alternating mode, over the axis speed (see measure)
   double density_excursion = 0;  ///< max |rho/rho_0 - 1| over the fluid (rho_0: the lattice's)
-  double wall_drag = 0;          ///< -(x force of walls and viscosity on the fluid) / M_fluid g
+  double drag = 0;               ///< -(x force of pressure and viscosity on the fluid) / M_fluid g
   double from_walls = 0;         ///< x force of the wall particles' pairs on the fluid / M_fluid g
   double from_gas = 0;           ///< |force of the fluid's pairs among themselves| / M_fluid g
 };
@@ -179,7 +180,7 @@ Sample measure(const Sim& sim, const RunChoices& c, double rho0, const std::vect
     if (row_count[k] > 0) alternating += (k % 2 == 0 ? 1.0 : -1.0) * row_sum[k] / row_count[k];
   s.alternation = std::abs(alternating) / rows / v0;
   const double drive = fluid_mass * c.g;
-  s.wall_drag = -fluid_force / drive;
+  s.drag = -fluid_force / drive;
   /// The momentum account walks the pairs once more, with the scene's own pair function, and
   /// sorts the force on the fluid into what its wall neighbours give it and what the fluid
   /// gives itself.  For a viscosity whose pairs push equally and oppositely the second is zero
