@@ -133,6 +133,7 @@
 #include "app/shock_tube_figure.hpp"
 #include "app/shock_tube_run.hpp"
 #include "app/text.hpp"
+#include "app/tube_measures.hpp"
 #include "plot/figure.hpp"
 #include "sph/boundaries/fixed_particles.hpp"
 #include "sph/measures/convergence.hpp"
@@ -917,26 +918,12 @@ MultiD step3_sod_2d_3d(const app::Chapter& chapter, const Parameters& par) {
 /// show how much the definition matters -- the same over the whole disturbed region, from the
 /// head of the rarefaction to \f$ 2\bar h \f$ beyond the shock.
 ///
-/// The RMS of \f$ (v_i - v_{\rm exact}(x_i))/v_* \f$ over the particles with
-/// \f$ lo \le x_i \le hi \f$ (zero if there are none).  The margins of the shocked region are
-/// given in units of the mean smoothing length \f$ \bar h \f$ of all particles, which is what
-/// "a couple of smoothing lengths" means in a 3D tube where h varies by the density ratio.
-template <int D>
-double velocity_scatter(const app::TubeRun<D>& run, double t, double lo, double hi) {
-  const double v_star = run.exact.star_velocity();
-  const auto v = sph::x_velocity(run.particles);
-  double sum = 0;
-  int n = 0;
-  for (std::size_t i = 0; i < v.size(); ++i) {
-    const double x = run.particles.position[i][0];
-    if (x < lo || x > hi) continue;
-    const double d = (v[i] - run.exact.sample(x, t).velocity) / v_star;
-    sum += d * d;
-    ++n;
-  }
-  return n ? std::sqrt(sum / n) : 0.0;
-}
-
+/// The scatter is app::velocity_scatter (lib/app/tube_measures.hpp), written there once for
+/// every chapter that quotes it: the RMS of \f$ (v_i - v_{\rm exact}(x_i))/v_* \f$ over the
+/// particles between two positions.  The margins are given in units of the mean smoothing
+/// length \f$ \bar h \f$ of all particles, which is what "a couple of smoothing lengths" means
+/// in a 3D tube where h varies by the density ratio.
+///
 /// The tube's shock is weaker than Sod's -- a pressure ratio of 5.6 instead of 10 -- and its star
 /// state is \f$ p_* = 0.429 \f$, \f$ v_* = 0.673 \f$, which the step prints.  It runs at 80
 /// particles per unit length on the dense side (40 with `--quick`), prints the exact star state,
@@ -973,9 +960,9 @@ double step4_monaghan_gingold_tube(const app::Chapter& chapter, const Parameters
   for (double h : run.particles.smoothing_length) h_mean += h / run.particles.size();
   const double t = par.t_end;
   const double contact = run.exact.contact_position(t), shock = run.exact.shock_position(t);
-  const double shocked = velocity_scatter(run, t, contact + 2 * h_mean, shock - 2 * h_mean);
+  const double shocked = app::velocity_scatter(run, t, contact + 2 * h_mean, shock - 2 * h_mean);
   const double disturbed =
-      velocity_scatter(run, t, run.exact.rarefaction_head_position(t), shock + 2 * h_mean);
+      app::velocity_scatter(run, t, run.exact.rarefaction_head_position(t), shock + 2 * h_mean);
   std::printf("\nStep 4: the Monaghan & Gingold tube (Watkins Table 1), 3D, t = %g\n", t);
   std::printf("  N = %zu, %g neighbours, %ld steps, %.2f s\n", run.particles.size(),
               par.neighbours_mg, run.steps, run.seconds);

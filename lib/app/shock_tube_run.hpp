@@ -94,7 +94,8 @@ struct TubeRun {
   /// The x momentum the walls of a walled tube took up from the gas (0 for a periodic tube):
   /// the gas's momentum changes by minus this, and momentum_drift counts the two together
   double wall_impulse = 0;
-  std::string limit;  ///< what limited the last full time step, e.g. "Courant (eq 7)"
+  std::size_t left_count = 0;  ///< the first left_count particles began on the left
+  std::string limit;           ///< what limited the last full time step, e.g. "Courant (eq 7)"
 };
 
 /// Builds the tube of \p setup with the smoothing-length rule \p rule, integrates it to
@@ -120,6 +121,7 @@ TubeRun<Scene::D> run_shock_tube(const sph::ShockTubeSetup& setup,
   run.name = options.label;
   run.exact = tube.exact;
   run.frame_velocity = validity.frame_velocity;
+  run.left_count = static_cast<std::size_t>(tube.left_count);
   const sph::Selection window = sph::shock_tube_window();
   for (std::size_t i = 0; i < tube.particles.size(); ++i) {
     run.in_window += window.contains<D>(i, tube.particles.position[i]);

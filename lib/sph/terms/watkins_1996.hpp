@@ -60,6 +60,8 @@
 #include "sph/particles.hpp"
 #include "sph/terms.hpp"
 
+#include <Eigen/Geometry>  // (the cross product of the 3D curl terms)
+
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
@@ -116,6 +118,27 @@ struct ParticleViscosity {
   }
 };
 
+/// A bulk viscosity the size of the artificial viscosity's linear term, with no shear (Watkins
+/// et al. sect. 4.3, their shock tube): \f$ \mu_{b,i} = \alpha\,\rho_i\,a_i\,h_i/8 \f$ at
+/// each particle, the continuum limit they quote (after Murray 1996) of the \f$ \alpha \f$ term
+/// for the kinematic \f$ \nu_b = \alpha a h/8 \f$.  The paper's \f$ a_0 \f$ is read two ways:
+/// each particle's sound speed now (`sound_speed` empty, the default), or one given per particle
+/// (the initial sound speed of its side, Table 1's \f$ a_0 \f$).
+struct ArtificialBulk {
+  double alpha = 1.0;               ///< \f$ \alpha \f$ (Watkins et al.: 1)
+  std::vector<double> sound_speed;  ///< \f$ a_{0,i} \f$ per particle; empty: \f$ c_i \f$ now
+  static constexpr bool varies = true;
+  template <int D>
+  double shear_at(std::size_t, const ParticleView<D>&) const {
+    return 0.0;
+  }
+  template <int D>
+  double bulk_at(std::size_t i, const ParticleView<D>& in) const {
+    const double a = sound_speed.empty() ? in.c[i] : sound_speed[i];
+    return alpha * in.rho[i] * a * in.h[i] / 8;
+  }
+};
+
 /// The term: Watkins et al.'s Navier-Stokes viscosity in D = 2 or 3 dimensions (the curl needs
 /// a plane), with coefficients of type Mu (ConstantViscosity, KinematicViscosity,
 /// ParticleViscosity).
@@ -145,6 +168,9 @@ class WatkinsViscosity {
                     "Navier-Stokes viscosity (Watkins et al. 1996), nu_s = %g, "
                     "nu_b = %g",
                     mu.shear, mu.bulk);
+    } else if constexpr (std::is_same_v<Mu, ArtificialBulk>) {
+      std::snprintf(s, sizeof s, "bulk viscosity (Watkins et al. 1996), mu_b = %g rho %s h / 8",
+                    mu.alpha, mu.sound_speed.empty() ? "c" : "a_0");
     } else {
       std::snprintf(s, sizeof s, "Navier-Stokes viscosity (Watkins et al. 1996), per particle");
     }
