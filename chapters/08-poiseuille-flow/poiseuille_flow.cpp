@@ -274,17 +274,21 @@ void step4_walls(const app::Chapter& chapter, const RunChoices& base, const Chan
 /// `measure`, shown in Step 1).
 ///
 /// **What drives it.**  Not Watkins' viscosity: the same rows appear with the one-pass
-/// viscosity.  It is the
-/// square lattice under a background pressure.  On Watkins' lattice, h = 1.545 spacings puts the
-/// nearest neighbours at 0.647 h, inside the maximum of \f$ |W'| \f$ at 2h/3: a pair that comes
-/// closer is pushed apart *less*, so a pressure \f$ P = c^2\rho \f$ holding the lattice in place
-/// lets it buckle -- the pairing instability of SPH, here seeded by round-off and growing at a
-/// rate that rises with c (the table's exponents).  The viscosity does not stop it: Watkins' two
-/// passes hardly damp the particle scale at all (chapter 7: \f$ \hat W(k)^2 \to 0 \f$ there),
-/// and the one pass damps it too slowly.  Take the background away -- \f$ P = c^2(\rho -
-/// \rho_0) \f$, the same force for every density difference -- and the lattice feels no push at
-/// rest: in Step 2's run the alternation stays at round-off (below 1e-15) through five
-/// settling times.
+/// viscosity.  It is the square lattice under a background pressure.  A first guess is the
+/// pairing instability of SPH: h = 1.545 spacings puts the nearest neighbours at 0.647 h,
+/// inside the maximum of \f$ |W'| \f$ at 2h/3, where a pair that comes closer is pushed apart
+/// *less*.  The runs with another h refute it.  With 20 neighbours the nearest sit at 0.79 h,
+/// outside the maximum, and the rows still alternate, as fast as with 30 (exp(389 t)), though
+/// that run survives to t = 0.5; with 50 neighbours, deeper inside, they grow more slowly
+/// (exp(149 t)).  What every unstable run shares is the lattice held in place by a pressure
+/// \f$ c^2\rho \f$: the equilibrium is exact, but the square lattice is not stable under it
+/// against a shear of alternate rows, and the mode grows from round-off at a rate that rises
+/// with c (453, 325 and 172 for c = 19.2, 9.6 and 4.8).  The viscosity does not stop it:
+/// Watkins' two passes hardly damp the particle scale at all (chapter 7: \f$ \hat W(k)^2 \to
+/// 0 \f$ there), and the one pass damps it too slowly.  Take the background away --
+/// \f$ P = c^2(\rho - \rho_0) \f$, the same force for every density difference -- and the
+/// lattice feels no push at rest: in Step 2's run the alternation stays at round-off (below
+/// 1e-15) through five settling times.
 ///
 /// **Confining the motion to x** stops the blow-up -- a particle can no longer be pushed onto a
 /// plate -- but not the alternation: the rows still alternate, from round-off at the same rate
@@ -354,6 +358,15 @@ void step5_rows(const app::Chapter& chapter, const RunChoices& base, const Chann
   RunChoices one_pass = rest;
   one_pass.viscosity = Viscosity::one_pass;
   run("P = c^2 rho, free, one-pass viscosity", one_pass);
+  /// Then another h: 20 neighbours put the nearest at 0.79 h, outside the maximum of
+  /// \f$ |W'| \f$; 50 put them at 0.50 h, deeper inside it.  (A lattice too coarse for 50
+  /// neighbours, whose walls would be thinner than 2h, leaves that run out.)
+  for (double n : {20.0, 50.0}) {
+    RunChoices other = rest;
+    other.channel.neighbours = n;
+    if (0.5 - other.channel.half_width < 2 * other.h()) continue;  // (walls thinner than 2h)
+    run(format("P = c^2 rho, free, %g neighbours", n), other);
+  }
   std::printf("  %-40s largest alternation %.1e up to t = %g\n",
               "P = c^2 (rho - rho_0), free (Step 2)", largest_alternation(main_run),
               main_run.t_end);
@@ -542,7 +555,8 @@ void step6_stiff(const RunChoices& base, double t, double t_re20) {
 ///    \f$ c^2\rho \f$ the rows alternate and the run is corrupted -- but from round-off at
 ///    once, long before the steady state (the run stops at t = 0.075), because the cause is the
 ///    square lattice under its own background pressure, not the flow.  Its rate rises with the
-///    sound speed; the paper does not give theirs, and a slower sound would delay it.
+///    sound speed; the paper does not give theirs, and a slower sound would delay it.  Another
+///    h does not cure it (20 or 50 neighbours: the rows alternate still).
 ///  - *Confining the motion to x suppresses it*: **not reproduced** as a cure.  The confined
 ///    run survives to t = 0.5, the end of Step 5's runs, but its rows alternate from round-off
 ///    as fast as the free run's and saturate near 1e-3 of the axis speed.
