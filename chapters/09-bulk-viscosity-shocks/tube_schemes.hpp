@@ -23,27 +23,83 @@
 namespace app::bulk {
 
 /// Watkins et al.'s bulk viscosity: their two passes with \f$ \mu_b = \alpha\rho a h/8 \f$ and
-/// no shear (sph::ArtificialBulk), in 3D.
-using Bulk = sph::WatkinsViscosity<3, sph::Kernel<3>, sph::ArtificialBulk>;
+/// no shear (sph::ArtificialBulk), in D dimensions (in 1D the two passes need no curl).
+template <int D>
+using Bulk = sph::WatkinsViscosity<D, sph::Kernel<D>, sph::ArtificialBulk>;
 
-struct BulkAlone : sph::Scene<3> {
-  using Terms = sph::Terms<sph::PressureOwnWork, Bulk>;
+template <int D>
+struct BulkAlone : sph::Scene<D> {
+  using Terms = sph::Terms<sph::PressureOwnWork, Bulk<D>>;
 };
 /// The bulk viscosity with the \f$ \beta \f$ term of the standard viscosity (its
 /// \f$ \alpha \f$ set to 0), which the paper keeps.
-struct BulkWithBeta : sph::Scene<3> {
-  using Terms = sph::Terms<sph::PressureOwnWork, Bulk, sph::MonaghanGingold1983>;
+template <int D>
+struct BulkWithBeta : sph::Scene<D> {
+  using Terms = sph::Terms<sph::PressureOwnWork, Bulk<D>, sph::MonaghanGingold1983>;
 };
-struct Standard : sph::Scene<3> {
+template <int D>
+struct Standard : sph::Scene<D> {
   using Terms = sph::Terms<sph::PressureOwnWork, sph::MonaghanGingold1983>;
 };
-struct Modified : sph::Scene<3> {
+template <int D>
+struct Modified : sph::Scene<D> {
   using Terms = sph::Terms<sph::PressureOwnWork, sph::RestrictedVonNeumannRichtmyer,
-                           sph::SelhammarCollective<3>>;
+                           sph::SelhammarCollective<D>>;
 };
-struct Switch : sph::Scene<3> {
+template <int D>
+struct Switch : sph::Scene<D> {
   using Terms = sph::Terms<sph::PressureOwnWork, sph::MorrisMonaghan1997>;
 };
+
+/// The schemes of the chapter, and their names in its tables.
+enum class Scheme { bulk_beta, bulk_alone, standard, modified, switch_av };
+inline const char* name(Scheme s) {
+  switch (s) {
+    case Scheme::bulk_beta:
+      return "bulk viscosity + beta";  // (22 characters at most)
+    case Scheme::bulk_alone:
+      return "bulk viscosity alone";
+    case Scheme::standard:
+      return "standard AV";
+    case Scheme::modified:
+      return "Selhammar modified";
+    case Scheme::switch_av:
+      return "switch";
+  }
+  return "?";
+}
+
+/// The coefficients every scheme runs with: the papers'.  The bulk viscosity's \f$ \alpha \f$
+/// and \f$ \beta \f$ and its reading of \f$ a_0 \f$ are the chapter's options; the standard
+/// viscosity is chapter 4's (\f$ \alpha = 1 \f$, \f$ \beta = 2 \f$), Selhammar's terms and the
+/// switch chapter 5's, the collective term's \f$ N_n \f$ the scene's neighbour number.
+struct SchemeCoefficients {
+  sph::ArtificialBulk bulk{1.0, {}};
+  double beta = 2.0;
+  double neighbours = 50;  ///< \f$ N_n \f$ of the collective term
+};
+
+/// The terms of `Scheme` s, in a call of \p run with the scene type and its terms: one place
+/// that knows how each scheme is made, for the tubes and the streams alike.
+template <int D, class Run>
+auto with_scheme(Scheme s, const SchemeCoefficients& k, Run&& run) {
+  switch (s) {
+    case Scheme::bulk_beta:
+      return run.template operator()<BulkWithBeta<D>>(
+          {{}, Bulk<D>(k.bulk), sph::MonaghanGingold1983(0.0, k.beta)});
+    case Scheme::bulk_alone:
+      return run.template operator()<BulkAlone<D>>({{}, Bulk<D>(k.bulk)});
+    case Scheme::standard:
+      return run.template operator()<Standard<D>>({{}, sph::MonaghanGingold1983()});
+    case Scheme::modified:
+      return run.template operator()<Modified<D>>({{},
+                                                   sph::RestrictedVonNeumannRichtmyer(2.0, 1e-4),
+                                                   sph::SelhammarCollective<D>(1.0, k.neighbours)});
+    case Scheme::switch_av:
+      return run.template operator()<Switch<D>>({{}, sph::MorrisMonaghan1997(0.1, 1.0, 0.1, 1e-4)});
+  }
+  throw sph::Error("unknown scheme");
+}
 
 /// What one run is measured by: the \f$ L_1 \f$ errors in the window \f$ |x| \le 0.5 \f$, the
 /// two velocity scatters of chapter 4, the widths of the fronts, the gases' overlap, and what

@@ -580,3 +580,41 @@ TEST_CASE("Watkins viscosity term: a fluid particle outside the walls is refused
       Catch::Contains("non-finite acceleration"));
   CHECK_THROWS_WITH(sph::ParabolicWalls<2>(0.5, -1.0), Catch::Contains("half-width"));
 }
+
+namespace {
+struct Watkins1D : sph::Scene<1> {
+  using Terms = sph::Terms<sph::WatkinsViscosity<1, sph::Kernel<1>, sph::ConstantViscosity>>;
+};
+}  // namespace
+
+TEST_CASE("Watkins viscosity term in 1D: (mu_b + 4/3 mu_s) v'' from the grad-div part",
+          "[derivatives]") {
+  // v = sin 2 pi x on 200 particles of a periodic unit line, h = 2 dx: no curl in 1D, so the
+  // shear viscosity enters only through 4/3 mu_s beside mu_b.
+  const int n = 200;
+  const double dx = 1.0 / n, two_pi = 2 * std::numbers::pi;
+  sph::Particles<1> p;
+  for (int i = 0; i < n; ++i) {
+    const double x = -0.5 + (i + 0.5) * dx;
+    p.add(sph::Vec<1>(x), sph::Vec<1>(std::sin(two_pi * x)), dx, 1.0, 2 * dx);
+  }
+  sph::Box<1> box;
+  box.lower[0] = -0.5;
+  box.upper[0] = 0.5;
+  box.periodic[0] = true;
+  sph::Settings settings;
+  settings.smoothing = sph::SmoothingLengthRule::fixed();
+  const double mu_s = 0.3, mu_b = 0.5;
+  const sph::Simulation<Watkins1D> sim(
+      p, box, sph::IdealGas(1.4),
+      sph::WatkinsViscosity<1, sph::Kernel<1>, sph::ConstantViscosity>({mu_s, mu_b}), settings);
+  double worst = 0;
+  const double scale = (mu_b + 4.0 / 3.0 * mu_s) * two_pi * two_pi;
+  for (int i = 0; i < n; ++i) {
+    const auto& q = sim.particles();
+    const double exact = -scale * std::sin(two_pi * q.position[i][0]) / q.density[i];
+    worst = std::max(worst, std::abs(q.acceleration[i][0] - exact) / scale);
+  }
+  INFO("worst error over (mu_b + 4/3 mu_s) 4 pi^2: " << worst);
+  CHECK(worst < 0.005);  // (the kernel's smoothing at k h = 2 pi / 100: about 1e-3)
+}

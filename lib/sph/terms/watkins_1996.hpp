@@ -139,14 +139,15 @@ struct ArtificialBulk {
   }
 };
 
-/// The term: Watkins et al.'s Navier-Stokes viscosity in D = 2 or 3 dimensions (the curl needs
-/// a plane), with coefficients of type Mu (ConstantViscosity, KinematicViscosity,
-/// ParticleViscosity).
+/// The term: Watkins et al.'s Navier-Stokes viscosity in D = 1, 2 or 3 dimensions, with
+/// coefficients of type Mu (ConstantViscosity, KinematicViscosity, ParticleViscosity,
+/// ArtificialBulk).  In 1D there is no curl: the whole force is the grad-div part,
+/// \f$ \partial_x[(\mu_b + \tfrac43\mu_s)\,\partial_x v] \f$, from the same two passes.
 template <int D, class K = Kernel<D>, class Mu = ConstantViscosity, class Walls = NoWalls>
 class WatkinsViscosity {
-  static_assert(D == 2 || D == 3, "WatkinsViscosity: the curl-curl operator needs 2D or 3D");
+  static_assert(D >= 1 && D <= 3, "WatkinsViscosity: 1D, 2D or 3D");
   using Mat = derivatives::Mat<D>;
-  static constexpr int curl_size = D == 2 ? 1 : 3;
+  static constexpr int curl_size = D == 1 ? 0 : D == 2 ? 1 : 3;
 
  public:
   Mu mu{};
@@ -234,8 +235,10 @@ class WatkinsViscosity {
     for (int a = 0; a < D; ++a)
       for (int b = 0; b < D; ++b) J(a, b) = sum.J[a][b];
     velocity_gradient[i] = J;
-    const auto w = derivatives::curl<D>(J);
-    for (int c = 0; c < curl_size; ++c) curl[i][c] = w[c];
+    if constexpr (D > 1) {
+      const auto w = derivatives::curl<D>(J);
+      for (int c = 0; c < curl_size; ++c) curl[i][c] = w[c];
+    }
     const double div = J.trace();
     divergence[i] = div;
     const double shear = mu.shear_at(i, in), bulk = mu.bulk_at(i, in);
@@ -250,11 +253,12 @@ class WatkinsViscosity {
       }
       // (div v) grad mu_b + 2 (grad mu_s . grad) v + grad mu_s x curl v
       Vec<D> a = div * gb + 2.0 * (J * gs);
+      const auto& w = curl[i];
       if constexpr (D == 2) {
         a += Vec<2>(gs[1] * w[0], -gs[0] * w[0]);  // (gx, gy, 0) x (0, 0, w)
-      } else {
+      } else if constexpr (D == 3) {
         a += gs.cross(Vec<3>(w[0], w[1], w[2]));
-      }
+      }  // (1D: no curl)
       local_acceleration[i] = a / in.rho[i];
     }
   }
@@ -276,7 +280,9 @@ class WatkinsViscosity {
     }
     // -mu_s (w_i - w_j) x grad W
     double cc[3] = {0, 0, 0};
-    if constexpr (D == 2) {
+    if constexpr (D == 1) {
+      // no curl in 1D: the whole viscous force is the grad-div part below
+    } else if constexpr (D == 2) {
       const double dw = curl[i][0] - curl_j[0];
       cc[0] = -dw * p.r_ij[1];  // (0, 0, dw) x (rx, ry, 0) = (-dw ry, dw rx)
       cc[1] = dw * p.r_ij[0];
