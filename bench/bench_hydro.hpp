@@ -11,6 +11,7 @@
 #include "sph/terms/morris_monaghan_1997.hpp"
 #include "sph/terms/pressure.hpp"
 #include "sph/terms/selhammar_1997.hpp"
+#include "sph/terms/watkins_1996.hpp"
 
 #include <omp.h>
 
@@ -61,6 +62,13 @@ struct SodModified : sph::Scene<D> {
 template <int D>
 struct SodSwitch : sph::Scene<D> {
   using Terms = sph::Terms<sph::PressureHernquistKatz, sph::MorrisMonaghan1997>;
+};
+// Chapter 9's bulk viscosity in place of the artificial one (Watkins' two passes, mu_b =
+// rho c h / 8): a gradient pass more, and a non-central pair acceleration in the force pass.
+template <int D>
+struct SodBulk : sph::Scene<D> {
+  using Terms = sph::Terms<sph::PressureHernquistKatz,
+                           sph::WatkinsViscosity<D, sph::Kernel<D>, sph::ArtificialBulk>>;
 };
 
 // Sod's tube in D dimensions, left spacing as given, with the scene's terms at their default
@@ -194,11 +202,11 @@ inline void bench_hydro(bool quick) {
   bench_viscosities(quick);
 }
 
-// Chapter 5's viscosities against the standard one (target: the modified step <= 1.3 times),
-// all with the same fixed step, so that each step moves the particles as far and the
-// neighbour search reuses its candidates as often (with its own step, a viscosity with a
-// longer step would pay more searching per step, and less per unit of time).  `--only
-// viscosities` runs this part alone (for a profile, or an A/B of two builds).
+// Chapter 5's viscosities and chapter 9's bulk viscosity against the standard one (target: the
+// modified step <= 1.3 times), all with the same fixed step, so that each step moves the
+// particles as far and the neighbour search reuses its candidates as often (with its own step,
+// a viscosity with a longer step would pay more searching per step, and less per unit of
+// time).  `--only viscosities` runs this part alone (for a profile, or an A/B of two builds).
 inline void bench_viscosities(bool quick) {
   const int steps = quick ? 5 : 40;
   const int threads = omp_get_num_procs();
@@ -210,13 +218,18 @@ inline void bench_viscosities(bool quick) {
       time_sod_steps<3, SodModified<3>>(spacing, rule, threads, steps, nullptr, dt);
   const StepCost with_switch =
       time_sod_steps<3, SodSwitch<3>>(spacing, rule, threads, steps, nullptr, dt);
+  const StepCost bulk = time_sod_steps<3, SodBulk<3>>(spacing, rule, threads, steps, nullptr, dt);
+  // (the standard step again, last: a drift of the machine shows as a difference of the two)
+  const StepCost again = time_sod_steps<3>(spacing, rule, threads, steps, nullptr, dt);
   std::printf(
-      "3D %8zu  fixed step %g: standard %.3f us/p-step; Selhammar's modified viscosity "
-      "%.3f (%.2f x); Morris-Monaghan switch %.3f (%.2f x)\n",
-      modified.particles, dt, standard.us_per_particle_step, modified.us_per_particle_step,
-      modified.us_per_particle_step / standard.us_per_particle_step,
+      "3D %8zu  fixed step %g: standard %.3f us/p-step (%.3f timed again last);\n"
+      "    Selhammar's modified viscosity %.3f (%.2f x); Morris-Monaghan switch %.3f (%.2f x); "
+      "Watkins' bulk viscosity %.3f (%.2f x)\n",
+      modified.particles, dt, standard.us_per_particle_step, again.us_per_particle_step,
+      modified.us_per_particle_step, modified.us_per_particle_step / standard.us_per_particle_step,
       with_switch.us_per_particle_step,
-      with_switch.us_per_particle_step / standard.us_per_particle_step);
+      with_switch.us_per_particle_step / standard.us_per_particle_step, bulk.us_per_particle_step,
+      bulk.us_per_particle_step / standard.us_per_particle_step);
 }
 
 }  // namespace bench
