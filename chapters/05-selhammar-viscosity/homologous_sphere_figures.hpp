@@ -13,7 +13,7 @@
 ///
 /// Header-only: a chapter that includes it links sph_plot.
 
-#include "homologous_sphere_run.hpp"
+#include "app/homologous_sphere_run.hpp"
 #include "plot/figure.hpp"
 
 #include <algorithm>

@@ -124,7 +124,7 @@
 #include "app/particle_measures.hpp"
 #include "collective_kick_figure.hpp"
 #include "homologous_sphere_figures.hpp"
-#include "homologous_sphere_run.hpp"
+#include "app/homologous_sphere_run.hpp"
 #include "weak_tube_figure.hpp"
 #include "weak_tube_run.hpp"
 #include "app/shock_tube_figure.hpp"
@@ -336,8 +336,8 @@ void print_headline(const Parameters& par) {
 /// without it q would heat the self-similar compression, exactly the fault this chapter
 /// examines in SPH.  The runs themselves are app::weak_tube_reference and
 /// app::homologous_sphere_reference, which record what the steps print; they are shown on this
-/// page with the SPH runs they referee, in the files weak_tube_run.hpp (Step 2) and
-/// homologous_sphere_run.hpp (Step 4).
+/// page with the SPH runs they referee, in the file weak_tube_run.hpp (Step 2) and in
+/// lib/app/homologous_sphere_run.hpp (Step 4), which chapter 9 uses too.
 
 /// \section ch05_stiff Step 1: the collective term alone, and why its explicit kick fails
 ///
@@ -964,12 +964,12 @@ auto census_probe(SphereCensus& census) {
 /// the mass (of the particles, which all have the same mass; of the shells' mass coordinate in
 /// the reference) measures the body, and compares like with like across SPH and the reference.
 ///
-/// The runner and the reference are the file homologous_sphere_run.hpp, shown here because
-/// Step 4 is the first to use them.  Both keep a record of every step rather than a few
+/// The runner and the reference are app::run_homologous_sphere and
+/// app::homologous_sphere_reference (lib/app/homologous_sphere_run.hpp, in the library because
+/// chapter 9 runs the sphere too).  Both keep a record of every step rather than a few
 /// snapshots, because what the table asks for -- the moment of the largest density, of the
 /// least kinetic energy -- is not known before the run; and the runner hands the simulation to
 /// a probe after every step, which is how census_probe() above follows the restricted term.
-/// \show_file homologous_sphere_run.hpp
 ///
 /// What the step keeps: the four runs and the reference, the census of the modified run with
 /// its largest value before t = 0.45, and the thermal energies of the boost's runs at t = 0.6.

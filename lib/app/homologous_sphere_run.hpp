@@ -6,8 +6,8 @@
 /// in spherical shells.
 ///
 /// The sphere (sph::make_homologous_sphere) falls inwards with \f$ \mathbf v = -2\mathbf r \f$,
-/// without gravity or boundary.  The chapter runs it with several viscosities, in the rest frame
-/// and in a moving one; step4_homologous_sphere() and galilean_boost(), below, make the calls.
+/// without gravity or boundary.  Chapter 5 runs it with several viscosities, in the rest frame
+/// and in a moving one (its step4_homologous_sphere() and galilean_boost() make the calls).
 ///
 /// **Maximum compression** is the moment of the largest density of any particle (of the
 /// central shell in the reference); the run keeps its particles there.  **A moving frame**: a
@@ -16,7 +16,7 @@
 /// directly.  After every step (and once at the start) the run hands the simulation to a
 /// callable, so that the chapter can follow its terms as they act.
 ///
-/// Header-only, like the chapter's other files that use lib/sph.
+/// Chapter 5 runs its viscosities on the sphere; chapter 9 runs Watkins' bulk viscosity on it.
 
 #include "app/particle_measures.hpp"
 #include "app/progress.hpp"
