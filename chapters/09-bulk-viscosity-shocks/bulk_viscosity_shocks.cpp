@@ -585,6 +585,45 @@ void step7_compression(const Parameters& par) {
 ///    waves arrive at t = 0.337), \f$ a_0 \f$ (either reading gives the same numbers to a few
 ///    per cent).
 ///
+/// \subsection ch09_which Which viscosity, for what
+///
+/// What chapters 4-6 and this one measured of the viscosities of the course, each cell from a
+/// recorded run (this chapter's unless marked; ch. 5 and ch. 6 are those chapters' runs, with
+/// the standard viscosity's \f$ \nu^2 \f$ of Selhammar there; "-" where the viscosity was not
+/// run).  Lower is better in every column but the last two, where the reference says what is
+/// right.
+///
+/// <table>
+/// <tr><th>viscosity</th><th>3D tube \f$ L_1(v) \f$</th><th>Sod 1D \f$ L_1(\rho) \f$</th>
+/// <th>Mach-10 streams: pairs passed</th>
+/// <th>homologous sphere \f$ E_{th} \f$ at t = 0.4 (inviscid 0.0233)</th>
+/// <th>Evrard collapse, max \f$ E_{th} \f$ (reference 1.7612, ch. 6)</th>
+/// <th>cost per step (bench)</th></tr>
+/// <tr><td>standard AV</td><td>2.33e-02</td><td>2.91e-04</td><td>0</td>
+///     <td>0.9865</td><td>1.4698</td>
+///     <td>1</td></tr>
+/// <tr><td>switch</td><td>3.70e-02</td><td>2.60e-04</td><td>0</td>
+///     <td>0.7948 (ch. 5)</td><td>1.5181</td>
+///     <td>about 2</td></tr>
+/// <tr><td>Selhammar modified</td><td>5.58e-02</td><td>1.10e-02</td><td>0</td>
+///     <td>0.0263 (ch. 5)</td><td>2.4126</td>
+///     <td>about 2</td></tr>
+/// <tr><td>bulk viscosity + beta</td><td>3.82e-02</td><td>5.28e-04</td><td>0</td>
+///     <td>0.9644</td><td>-</td>
+///     <td>2.6</td></tr>
+/// <tr><td>bulk viscosity alone</td><td>5.09e-02</td><td>stops</td><td>143</td>
+///     <td>0.3422</td><td>-</td>
+///     <td>2.6</td></tr>
+/// </table>
+///
+/// For shocks, the standard viscosity or the switch: the most accurate, the standard the
+/// cheapest per step, the switch the one that needs the fewest steps (Step 5).  For a
+/// smooth supersonic compression, Selhammar's restricted term, the only one that leaves it
+/// alone.  Watkins' bulk viscosity is not a better shock viscosity than the one it was built to
+/// replace, and never one without the \f$ \beta \f$ term; its place is where the fluid has a
+/// bulk viscosity of its own, which the next chapters' flows ask for.  Its Evrard collapse is
+/// not run yet.
+///
 /// \section ch09_try What to try
 ///
 ///  - `--alpha 2`: a bulk viscosity twice as strong -- does the shock widen to the standard
