@@ -617,7 +617,7 @@ void step7_compression(const Parameters& par) {
 /// </table>
 ///
 /// For shocks, the standard viscosity or the switch: the most accurate, the standard the
-/// cheapest per step, the switch the one that needs the fewest steps (Step 5).  For a
+/// cheapest per step, the switch in half its steps on Sod's tube (Step 5).  For a
 /// smooth supersonic compression, Selhammar's restricted term, the only one that leaves it
 /// alone.  Watkins' bulk viscosity is not a better shock viscosity than the one it was built to
 /// replace, and never one without the \f$ \beta \f$ term; its place is where the fluid has a
