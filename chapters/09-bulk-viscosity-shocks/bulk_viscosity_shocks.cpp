@@ -16,12 +16,12 @@
 /// \f[ \mu_b = \rho\,a_0\,h/8 \quad (\alpha = 1), \qquad
 ///     \rho\frac{d\mathbf v}{dt} = -\nabla P + \mu_b\nabla(\nabla\cdot\mathbf v)
 ///     + (\nabla\cdot\mathbf v)\nabla\mu_b \qquad \text{(eq 23)}, \f]
-/// computed with their two passes.  Can a physical viscosity, with accurate second derivatives,
-/// hold a shock as well as the artificial one?  Their sect. 4.3.2 says yes: the shock and the
-/// contact are spread over about 2h (about h with the artificial viscosity), a few post-shock
-/// oscillations remain, the scatter about the exact velocity is about 11 % against the
-/// artificial viscosity's 15 %, and the result is "of greater accuracy" (sect. 4.3.2) --
-/// "similar", say their conclusions.
+/// computed with their two passes. Can a physical viscosity, with accurate second derivatives, hold
+/// a shock as well as the artificial one? Their sect. 4.3.2 says yes: the shock and the contact are
+/// spread over about 2h (the shocks twice as wide as with the artificial viscosity, which they put
+/// down to the double sum), a few post-shock oscillations remain, the scatter about the exact
+/// velocity is about 11 % against the artificial viscosity's 15 %, and the result is "of greater
+/// accuracy" (sect. 4.3.2) -- "similar", say their conclusions.
 ///
 /// New in the library for this chapter: the coefficient \f$ \mu_b = \alpha\rho a h/8 \f$ as a
 /// policy of Watkins' term (sph::ArtificialBulk, lib/sph/terms/watkins_1996.hpp), and the
