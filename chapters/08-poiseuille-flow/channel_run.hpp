@@ -89,8 +89,10 @@ struct RunChoices {
   /// time of a smoothing length, h/c, and the viscous limit the viscosity term declares.
   double dt() const {
     if (fixed_step > 0) return fixed_step;
-    return std::min(step_factor * h() / sound_speed, viscous_limit());
+    return std::min(sound_step(), viscous_limit());
   }
+  /// The sound's part of the rule: step_factor h/c.
+  double sound_step() const { return step_factor * h() / sound_speed; }
   /// The viscous limit of the term (viscous_limit_factor) for this lattice's h.
   double viscous_limit() const {
     return viscous_limit_factor(viscosity) * h() * h() * channel.density / mu;

@@ -378,15 +378,14 @@ void step5_rows(const app::Chapter& chapter, const RunChoices& base, const Chann
   }
   lines.push_back({"P = c^2(\\rho - \\rho_0), free (Step 2)", &main_run, &Sample::alternation,
                    plot::Dash::dashed});
-  history_figure(chapter, "rows.png", "The alternating rows: amplitude of the rows' alternation",
-                 "A / v_{axis}", lines, [&] {
-                   plot::Stamp s = stamp(base, static_cast<long long>(main_run.last.size()), -1,
-                                         "samples every 0.005");
-                   s.scheme =
-                       "Watkins' two-pass viscosity (one run: the one pass), predictor-corrector";
-                   s.extra = "c as in the legend (else 19.2), dt = h/4c; samples every 0.005";
-                   return s;
-                 }());
+  history_figure(
+      chapter, "rows.png", "The alternating rows: amplitude of the rows' alternation",
+      "A / v_{axis}", lines, [&] {
+        plot::Stamp s = stamp(base, static_cast<long long>(main_run.last.size()), -1, "");
+        s.scheme = "Watkins' two-pass viscosity (one run: the one pass), predictor-corrector";
+        s.extra = "c, N_{ngb} as in the legend (else 19.2, 30), dt = min(h/4c, viscous limit)";
+        return s;
+      }());
 }
 
 /// \section ch08_step6 Step 6: which viscosity, error against run time, and the stiff cases
@@ -449,9 +448,8 @@ sph::ErrorVsTime step6_viscosities(const app::Chapter& chapter, const RunChoices
       /// Each row names the limit that binds the step: a quarter of the sound's h/c, or the
       /// viscous limit the term declares, whichever is smaller.  A run that blows up is
       /// reported with its stop, and left out of the study.
-      const double sound = c.h() / c.sound_speed;
       std::printf("  %-22s  %4d  %.2e  %.2e  %-8s  %5ld  %8.1f  ", name(v), side, r.dt,
-                  c.viscous_limit(), 0.25 * sound < c.viscous_limit() ? "sound" : "viscous",
+                  c.viscous_limit(), c.sound_step() < c.viscous_limit() ? "sound" : "viscous",
                   r.steps, r.seconds);
       if (!r.stopped.empty()) {
         std::printf("stopped at t = %.4f\n%s\n", r.stopped_at,
@@ -492,11 +490,10 @@ void step6_stiff(const RunChoices& base, double t, double t_re20) {
       std::printf("%s\n", app::wrap("      (" + r.stopped + ")", 100, 6).c_str());
     }
   };
-  const double limit = 0.125 * base.h() * base.h() * base.channel.density / (4.0 / 3.0 * base.mu);
   for (double f : {4.0, 16.0}) {
     RunChoices big = base;  // (c lowered so that the sound's limit stays 4 steps away)
-    big.fixed_step = f * limit;
-    big.sound_speed = std::min(base.sound_speed, 0.25 * base.h() / big.fixed_step);
+    big.fixed_step = f * base.viscous_limit();
+    big.sound_speed = std::min(base.sound_speed, base.step_factor * base.h() / big.fixed_step);
     run(format("%g x the viscous limit, c = %.2g", f, big.sound_speed), big, t);
   }
   RunChoices monaghan = base;  // at the step of the other two, twice its own limit

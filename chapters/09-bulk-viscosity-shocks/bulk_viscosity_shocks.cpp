@@ -63,6 +63,7 @@
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -354,6 +355,24 @@ sph::ErrorVsTime step4_which(const app::Chapter& chapter, const Parameters& par)
   return study;
 }
 
+/// One run of a scheme on a 1D tube to t = 0.2, h from the density with four neighbours (as
+/// chapters 4 and 5 run Sod's tube); a run that cannot go on (its time step collapses) prints
+/// its stop under the label and returns nothing.
+std::optional<app::TubeRun<1>> run_tube_1d(Scheme scheme, const SchemeCoefficients& k,
+                                           const sph::ShockTubeSetup& tube,
+                                           const std::string& label, int label_width) {
+  try {
+    return with_scheme<1>(scheme, k, [&]<class Scene>(const typename Scene::Terms& terms) {
+      return app::run_shock_tube<Scene>(tube, sph::SmoothingLengthRule::from_density(4), terms,
+                                        {.t_end = 0.2, .label = label});
+    });
+  } catch (const sph::Error& e) {
+    std::printf("  %-*s stopped:\n%s\n", label_width, label.c_str(),
+                app::wrap(std::string("    ") + e.what(), 100, 4).c_str());
+    return std::nullopt;
+  }
+}
+
 /// \section ch09_step5 Step 5: the same five in 1D -- Sod's tube and the colliding streams
 ///
 /// Watkins' term is a term of the step in any dimension: in 1D the two passes need no curl and
@@ -393,17 +412,8 @@ std::size_t step5_one_d(const Parameters& par) {
   for (Scheme scheme : all) {
     /// A run that cannot go on (its time step collapses) is reported with its stop.
     const SchemeCoefficients k{{par.alpha, {}}, par.beta, 4};
-    try {
-      const app::TubeRun<1> run =
-          with_scheme<1>(scheme, k, [&]<class Scene>(const typename Scene::Terms& terms) {
-            return app::run_shock_tube<Scene>(sod, sph::SmoothingLengthRule::from_density(4), terms,
-                                              {.t_end = 0.2, .label = name(scheme)});
-          });
-      print_score(score(name(scheme), run, 0.2));
-    } catch (const sph::Error& e) {
-      std::printf("  %-22s stopped:\n%s\n", name(scheme),
-                  app::wrap(std::string("    ") + e.what(), 100, 4).c_str());
-    }
+    const auto run = run_tube_1d(scheme, k, sod, name(scheme), 22);
+    if (run) print_score(score(name(scheme), *run, 0.2));
   }
   /// The streams: chapter 3's two cold slabs, each at Mach 10 towards the other, to t = 0.4,
   /// with chapter 5's settings (h from the density, five neighbours, \f$ N_n \f$ = 5, a budget
@@ -471,19 +481,11 @@ void step6_stiff(const Parameters& par) {
                        double alpha) {
     tube.left_spacing = 1.0 / resolution;
     const SchemeCoefficients k{{alpha, {}}, par.beta, 4};
-    try {
-      const app::TubeRun<1> run =
-          with_scheme<1>(scheme, k, [&]<class Scene>(const typename Scene::Terms& terms) {
-            return app::run_shock_tube<Scene>(tube, sph::SmoothingLengthRule::from_density(4),
-                                              terms, {.t_end = 0.2, .label = label});
-          });
-      const auto e = sph::shock_tube_errors(run.particles, run.exact, 0.2);
-      std::printf("  %-36s %.2e %.2e %5ld  %.1e  %.1e  %s\n", label.c_str(), e[0].L1, e[1].L1,
-                  run.steps, run.energy_change, run.momentum_drift, run.limit.c_str());
-    } catch (const sph::Error& e) {
-      std::printf("  %-36s stopped:\n%s\n", label.c_str(),
-                  app::wrap(std::string("    ") + e.what(), 100, 4).c_str());
-    }
+    const auto run = run_tube_1d(scheme, k, tube, label, 36);
+    if (!run) return;
+    const auto e = sph::shock_tube_errors(run->particles, run->exact, 0.2);
+    std::printf("  %-36s %.2e %.2e %5ld  %.1e  %.1e  %s\n", label.c_str(), e[0].L1, e[1].L1,
+                run->steps, run->energy_change, run->momentum_drift, run->limit.c_str());
   };
   sph::ShockTubeSetup strong = sph::ShockTubeSetup::sod();
   strong.right.pressure = strong.left.pressure * 1e-5;

@@ -52,12 +52,8 @@ struct FreeScene : sph::Scene<2> {
   using Boundaries = sph::FixedParticles;
   using Integrator = sph::PredictorCorrector<2>;
 };
-struct ConfinedScene : sph::Scene<2> {
-  using Eos = sph::Isothermal;
-  using Terms = sph::Terms<sph::PressureHernquistKatz>;
-  using External = sph::UniformField<2>;
+struct ConfinedScene : FreeScene {
   using Boundaries = sph::FixedParticlesMovingAlong;
-  using Integrator = sph::PredictorCorrector<2>;
 };
 
 }  // namespace
