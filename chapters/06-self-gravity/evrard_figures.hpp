@@ -8,7 +8,7 @@
 /// Header-only: the program that includes it links sph_plot.
 
 #include "evrard_reference.hpp"
-#include "evrard_run.hpp"
+#include "app/evrard_run.hpp"
 #include "radial_profile.hpp"
 #include "plot/figure.hpp"
 

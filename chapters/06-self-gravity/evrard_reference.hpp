@@ -13,18 +13,17 @@
 ///  - `profile_t0.8_finite_volume_1d.txt`: r, rho, v, P (and a fifth column) at t = 0.8 of a
 ///    finite-volume code with 8000 cells.
 ///
-/// The third, sph::Lagrangian1D with self-gravity, is run here from the same initial state,
-/// \f$ \rho = 1/(2\pi r) \f$, \f$ u = 0.05 \f$, at rest.
+/// The third, sph::Lagrangian1D with self-gravity (app::run_evrard_lagrangian, in the library
+/// because chapter 9 draws it too), is run from the same initial state.
 ///
 /// Header-only, like the chapter's other helper files.
 
+#include "app/evrard_run.hpp"
 #include "sph/error.hpp"
-#include "sph/reference/lagrangian_1d.hpp"
 
 #include <cstddef>
 #include <filesystem>
 #include <fstream>
-#include <numbers>
 #include <sstream>
 #include <string>
 #include <vector>
@@ -70,42 +69,9 @@ struct EvrardReference {
   std::vector<double> t, kinetic, thermal, potential;
   /// profile at t = 0.8: r, rho, v, P (finite-volume code, 8000 cells)
   std::vector<double> r, rho, v, pressure;
-  /// the energies of lib/sph's Lagrangian code, every 0.005 in time
-  std::vector<double> own_t, own_kinetic, own_thermal, own_potential;
-  sph::LagrangianProfile own_08;   ///< its profile at t = 0.8
-  sph::LagrangianProfile own_end;  ///< and at the end
-  std::vector<double> own_zone_mass;
+  /// lib/sph's own Lagrangian code: its energies, its profiles at t = 0.8 and at the end
+  EvrardLagrangian own;
 };
-
-/// Runs lib/sph's Lagrangian code, \p own_zones equal-mass shells with self-gravity, from the
-/// Evrard sphere's initial state to \p t_end, and records its energies, its profile at
-/// t = 0.8 and at the end, and its zones' masses in \p ref.
-inline void run_own_lagrangian(EvrardReference& ref, int own_zones, double t_end) {
-  sph::LagrangianOptions o;
-  o.left = sph::LagrangianEnd::centre;
-  o.self_gravity = true;
-  const auto rho = [](double r) { return 1.0 / (2.0 * std::numbers::pi * r); };
-  sph::Lagrangian1D sphere = sph::Lagrangian1D::from_profile(
-      sph::LagrangianGeometry::spherical,
-      sph::Lagrangian1D::equal_mass_edges(sph::LagrangianGeometry::spherical, 0.0, 1.0, own_zones,
-                                          rho),
-      rho, [](double) { return 0.0; }, [](double) { return 0.05; }, o);
-  double next = 0;
-  const auto watch = [&](const sph::Lagrangian1D& s) {
-    if (s.time() + 1e-12 < next) return;
-    ref.own_t.push_back(s.time());
-    ref.own_kinetic.push_back(s.kinetic_energy());
-    ref.own_thermal.push_back(s.thermal_energy());
-    ref.own_potential.push_back(s.potential_energy());
-    next += 0.005;
-  };
-  watch(sphere);
-  sphere.run_until(0.8, watch);
-  ref.own_08 = sphere.profile();
-  sphere.run_until(t_end, watch);
-  ref.own_end = sphere.profile();
-  ref.own_zone_mass = sphere.zone_mass();
-}
 
 /// Reads the two reference tables from the directory \p dir, and runs lib/sph's Lagrangian code
 /// with \p own_zones shells to \p t_end.
@@ -122,7 +88,7 @@ inline EvrardReference load_evrard_reference(const std::filesystem::path& dir, i
   ref.rho = p.columns[1];
   ref.v = p.columns[2];
   ref.pressure = p.columns[3];
-  run_own_lagrangian(ref, own_zones, t_end);
+  ref.own = run_evrard_lagrangian(own_zones, t_end);
   return ref;
 }
 

@@ -31,10 +31,9 @@
 /// program holds the steps; each file is shown on this page where a step first uses it: one
 /// evaluation of a gravity module on its own (`gravity_alone.hpp`, Step 1), the tree's accuracy
 /// rows and their figures (`tree_figures.hpp`, Step 2), the free-fall figure
-/// (`free_fall_figure.hpp`, Step 3), one run of the Evrard collapse with its energy history
-/// (`evrard_run.hpp`), the 1D references (`evrard_reference.hpp`), the gas a collapse throws off
-/// (`unbound_gas.hpp`) and the collapse's figures (`evrard_figures.hpp`), all in Step 4, and
-/// radial profiles and the shock on them (`radial_profile.hpp`, Step 5).
+/// (`free_fall_figure.hpp`, Step 3), the 1D references (`evrard_reference.hpp`), the gas a
+/// collapse throws off (`unbound_gas.hpp`) and the collapse's figures (`evrard_figures.hpp`), all
+/// in Step 4, and radial profiles and the shock on them (`radial_profile.hpp`, Step 5).
 ///
 /// The program has seven steps, each a function below under its own heading, and `main` at the
 /// end calls them in order:
@@ -103,9 +102,9 @@
 #include "app/curve_reading.hpp"
 #include "app/error_figure.hpp"
 #include "app/particle_measures.hpp"
+#include "app/evrard_run.hpp"
 #include "evrard_figures.hpp"
 #include "evrard_reference.hpp"
-#include "evrard_run.hpp"
 #include "free_fall_figure.hpp"
 #include "gravity_alone.hpp"
 #include "radial_profile.hpp"
@@ -966,10 +965,8 @@ FreeFallResult step3_free_fall(const app::Chapter& chapter, const Parameters& pa
 /// "the findings").
 ///
 /// **The machinery of a run.**  `app::run_evrard` and the `app::EvrardRun` it returns are in
-/// evrard_run.hpp, with `app::extremes`, which reads the peaks of an energy history for the
-/// tables and the checks:
-///
-/// \show_file evrard_run.hpp
+/// lib/app/evrard_run.hpp (in the library because chapter 9 runs the collapse too), with
+/// `app::extremes`, which reads the peaks of an energy history for the tables and the checks.
 ///
 /// `app::load_evrard_reference`, with the `app::EvrardReference` it fills, is in
 /// evrard_reference.hpp; our own Lagrangian run is started there:
@@ -1065,7 +1062,7 @@ void print_energy_table(const Collapse& c, const Parameters& par) {
   const app::EvrardReference& ref = c.reference;
   const app::Extremes r = app::extremes(ref.t, ref.kinetic, ref.thermal, ref.potential);
   const app::Extremes own =
-      app::extremes(ref.own_t, ref.own_kinetic, ref.own_thermal, ref.own_potential);
+      app::extremes(ref.own.t, ref.own.kinetic, ref.own.thermal, ref.own.potential);
   // (the table fits in 100 columns: names of at most 21 characters)
   std::printf("  %-21s %13s %13s %14s %6s %6s %8s %8s\n", "", "max E_kin", "max E_th", "min E_pot",
               "steps", "wall", "|dE/E|", "momentum");
@@ -1114,7 +1111,7 @@ void print_energy_table(const Collapse& c, const Parameters& par) {
     std::printf("    %-21s %8.4f %8.4f %10.4f %10.4f\n", label.c_str(), g.kinetic, g.bulk, g.mass,
                 g.unbound_kinetic);
   };
-  unbound_row("ours, 1D", app::unbound_gas(ref.own_end, ref.own_zone_mass));
+  unbound_row("ours, 1D", app::unbound_gas(ref.own.at_end, ref.own.zone_mass));
   for (const app::EvrardRun* run : {&c.runs[0], &c.runs[1], &c.runs[2]})
     unbound_row(run->name, app::unbound_gas(run->at_end));
   /// The fourth, with `--one-step` only, divides the updates and the wall time of each run with
@@ -1236,10 +1233,10 @@ struct Profiles {
 
 double own_code_against_finite_volume(const app::EvrardReference& ref, double shock_position) {
   double sum = 0, weight = 0;
-  for (std::size_t k = 0; k < ref.own_08.radius.size(); ++k) {
-    const double r = ref.own_08.radius[k];
+  for (std::size_t k = 0; k < ref.own.at_08.radius.size(); ++k) {
+    const double r = ref.own.at_08.radius[k];
     if (r < 0.01 || std::abs(r - shock_position) < 0.02) continue;
-    sum += std::abs(std::log10(ref.own_08.density[k] / app::interpolate(ref.r, ref.rho, r)));
+    sum += std::abs(std::log10(ref.own.at_08.density[k] / app::interpolate(ref.r, ref.rho, r)));
     weight += 1;
   }
   return sum / weight;

@@ -6,9 +6,9 @@
 ///
 /// Chapters 3 and 4 run dozens of shock tubes, with different schemes, dimensions, starts and
 /// smoothing-length rules.  Each run is the same few steps: build the tube
-/// (sph::make_shock_tube), hand it to a simulation of the chosen scene with an ideal gas of the
-/// tube's \f$ \gamma \f$, integrate with a progress line, and measure the totals before and
-/// after.  They live here once:
+/// (sph::make_shock_tube), hand it to a simulation of the chosen scene with its gas (tube_gas:
+/// an ideal gas of the tube's \f$ \gamma \f$, or each side's adiabat), integrate with a
+/// progress line, and measure the totals before and after.  They live here once:
 ///
 /// \code
 /// template <int D>
@@ -98,9 +98,27 @@ struct TubeRun {
   std::string limit;           ///< what limited the last full time step, e.g. "Courant (eq 7)"
 };
 
+/// The gas of the tube \p tube made from \p setup: an ideal gas of the tube's \f$ \gamma \f$,
+/// or with sph::Adiabats each particle on the adiabat of the state it starts in,
+/// \f$ K = P/\rho^\gamma \f$ of its side (the polytrope Watkins et al. print, chapter 9).
+template <class Eos, int D>
+Eos tube_gas(const sph::ShockTubeSetup& setup, const sph::ShockTube<D>& tube) {
+  if constexpr (std::is_same_v<Eos, sph::Adiabats>) {
+    std::vector<double> K(tube.particles.size());
+    for (std::size_t i = 0; i < K.size(); ++i) {
+      const sph::GasState& side =
+          i < static_cast<std::size_t>(tube.left_count) ? setup.left : setup.right;
+      K[i] = side.pressure / std::pow(side.density, setup.gamma);
+    }
+    return sph::Adiabats(std::move(K), setup.gamma);
+  } else {
+    return Eos(setup.gamma);
+  }
+}
+
 /// Builds the tube of \p setup with the smoothing-length rule \p rule, integrates it to
-/// `options.t_end` with the scene \p Scene (its terms given by \p terms, an ideal gas of the
-/// tube's \f$ \gamma \f$, the Courant factor of the options) and returns the final state and
+/// `options.t_end` with the scene \p Scene (its terms given by \p terms, its gas made by
+/// tube_gas, the Courant factor of the options) and returns the final state and
 /// what was measured on the way.  Errors of the simulation (a time step that collapses, a
 /// non-finite force) propagate as sph::Error.
 template <class Scene>
@@ -132,7 +150,8 @@ TubeRun<Scene::D> run_shock_tube(const sph::ShockTubeSetup& setup,
   settings.courant = options.courant;
   settings.timestep_rule = options.timestep_rule;
   const Stopwatch clock;
-  sph::Simulation<Scene> sim(tube.particles, tube.box, sph::IdealGas(setup.gamma), terms, settings);
+  sph::Simulation<Scene> sim(tube.particles, tube.box, tube_gas<typename Scene::Eos>(setup, tube),
+                             terms, settings);
   const auto energy = [](const sph::Particles<D>& p) {
     return sph::kinetic_energy(p) + sph::thermal_energy(p);
   };

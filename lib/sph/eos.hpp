@@ -4,12 +4,16 @@
 ///
 /// Each equation of state is a small value type with `pressure(rho, u)`, `sound_speed(rho, u)`
 /// and `evolves_energy` (whether the energy equation is integrated at all: a polytropic or
-/// isothermal gas has no use for du/dt, and a scene with one does not compute it).
+/// isothermal gas has no use for du/dt, and a scene with one does not compute it).  One,
+/// sph::Adiabats, takes the particle's index as well.
 
 #include "sph/error.hpp"
 
 #include <cmath>
+#include <cstddef>
 #include <string>
+#include <utility>
+#include <vector>
 
 namespace sph {
 
@@ -46,6 +50,36 @@ struct Polytropic {
   double pressure(double rho, double) const { return K * std::pow(rho, gamma); }
   double sound_speed(double rho, double u) const {
     return std::sqrt(gamma * pressure(rho, u) / rho);
+  }
+};
+
+/// Every particle on an adiabat of its own, \f$ P_i = K_i\rho_i^\gamma \f$: a polytrope whose K
+/// differs from particle to particle.  Watkins et al. (1996, sect. 4.3) print their shock tube's
+/// gas this way, K = 1 on one side and 1.25 on the other; chapter 9 runs it to show that such a
+/// gas cannot be heated by a shock.  Nothing is integrated for the energy; the internal energy is
+/// that of the ideal gas on the particle's adiabat, \f$ u_i = K_i\rho_i^{\gamma-1}/(\gamma-1)
+/// \f$, set with the pressure so that the thermal energy and the figures read it.  The only
+/// equation of state that knows the particle: the step passes it the index.
+struct Adiabats {
+  std::vector<double> K;  ///< \f$ K_i \f$, one per particle
+  double gamma = 5.0 / 3.0;
+  static constexpr bool evolves_energy = false;
+  static constexpr bool per_particle = true;  ///< the step passes the particle's index
+  static constexpr const char* name = "each particle on its own adiabat";
+
+  Adiabats() = default;
+  Adiabats(std::vector<double> k, double g) : K(std::move(k)), gamma(g) {
+    require(std::isfinite(g) && g > 1.0, "adiabats: gamma must exceed 1 (got " + show(g) + ")");
+    for (std::size_t i = 0; i < K.size(); ++i)
+      require(std::isfinite(K[i]) && K[i] > 0, "adiabats: K of particle " + std::to_string(i) +
+                                                   " is " + show(K[i]) + ", not a positive number");
+  }
+  double pressure(std::size_t i, double rho) const { return K[i] * std::pow(rho, gamma); }
+  double sound_speed(std::size_t i, double rho) const {
+    return std::sqrt(gamma * pressure(i, rho) / rho);
+  }
+  double internal_energy(std::size_t i, double rho) const {
+    return pressure(i, rho) / ((gamma - 1.0) * rho);
   }
 };
 

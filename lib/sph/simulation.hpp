@@ -90,6 +90,8 @@ class Simulation {
   /// (test particles in a potential, or pure N-body).
   static constexpr bool hydro = TermList::count > 0;
   static constexpr bool evolve_energy = hydro && Eos::evolves_energy;
+  // An equation of state of the particle (sph::Adiabats): called with its index.
+  static constexpr bool per_particle_eos = requires { requires Eos::per_particle; };
   static constexpr Needs needs = TermList::needs;
   static_assert(
       TermList::template all_recognised<D>,
@@ -114,6 +116,10 @@ class Simulation {
     particles_.validate();
     if constexpr (hydro) require_distinct_particles();
     boundaries_.validate(particles_);
+    if constexpr (per_particle_eos)
+      require(eos_.K.size() == particles_.size(),
+              "simulation: the equation of state has " + std::to_string(eos_.K.size()) +
+                  " adiabats for " + std::to_string(particles_.size()) + " particles");
     for (auto& x : particles_.position) x = box_.wrap(x);
     terms_.for_each([n = particles_.size()](auto& t) {
       if constexpr (HasResize<std::decay_t<decltype(t)>>) t.resize(n);
@@ -471,8 +477,14 @@ class Simulation {
     compute_density<D, K, needs>(
         p, search_.list(), in.x, settings_.density,
         [&](std::size_t i) {
-          p.pressure[i] = eos_.pressure(p.density[i], p.internal_energy[i]);
-          p.sound_speed[i] = eos_.sound_speed(p.density[i], p.internal_energy[i]);
+          if constexpr (per_particle_eos) {
+            p.pressure[i] = eos_.pressure(i, p.density[i]);
+            p.sound_speed[i] = eos_.sound_speed(i, p.density[i]);
+            p.internal_energy[i] = eos_.internal_energy(i, p.density[i]);
+          } else {
+            p.pressure[i] = eos_.pressure(p.density[i], p.internal_energy[i]);
+            p.sound_speed[i] = eos_.sound_speed(p.density[i], p.internal_energy[i]);
+          }
           fields_.p_over_rho2[i] = p.pressure[i] / (p.density[i] * p.density[i]);
           if constexpr (TermList::template any_after_density<D>) {
             terms_.for_each([&](auto& t) {
