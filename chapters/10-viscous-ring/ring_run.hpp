@@ -44,6 +44,7 @@ struct RingSettings {
   double check_interval = 0.1;    ///< time between two looks for particles to accrete
   double sound_speed = 1e-3;      ///< of the isothermal gas: enters the Courant step only
   double courant = 0.3;
+  bool progress = true;  ///< a progress line, and a report line at the end
 };
 
 /// The gas at one output time.
@@ -89,7 +90,7 @@ RingRun run_ring(const std::string& name, const sph::setups::ViscousRingDisc& di
   sph::Particles<2> gas = sph::setups::make_viscous_ring(disc);
   RingSnapshot account{disc.tau0, 0.0, {}, 0, 0, 0};
   const double t_end = disc.ring.time(taus.back() - disc.tau0);
-  Progress progress(t_end, name, ProgressDisplay::automatic());
+  Progress progress(t_end, name, rs.progress ? ProgressDisplay::automatic() : ProgressDisplay{});
   double t = 0;        // since tau0
   long steps_now = 0;  // the steps of all pieces so far, for a run that stops in a piece
   /// A snapshot is the gas with the point mass's account so far.

@@ -29,6 +29,17 @@ sph::Settings channel_settings() {
   return s;
 }
 
+// The channel's particles, the fluid moving on eq 15's parabola (a, g, mu), the walls at rest.
+sph::Particles<2> on_parabola(const sph::setups::PoiseuilleChannel& channel, double a, double g,
+                              double mu) {
+  sph::Particles<2> p = channel.particles();
+  for (std::size_t i = 0; i < p.size(); ++i) {
+    const double y = p.position[i][1];
+    if (p.kind[i] == sph::ParticleKind::fluid) p.velocity[i][0] = g * (a * a - y * y) / (2 * mu);
+  }
+  return p;
+}
+
 using Walls = sph::ParabolicWalls<2>;
 using OnePass = sph::MorrisFoxZhu1997<2, Walls>;
 
@@ -154,12 +165,8 @@ TEST_CASE("Channel: fluid moving along one axis stays on its line", "[channel]")
 // walls are wrong by order one.  And its pairs push equally and oppositely.
 TEST_CASE("One-pass viscosity: the Poiseuille parabola, the walls, and momentum", "[channel]") {
   const sph::setups::PoiseuilleChannel channel;
-  sph::Particles<2> p = channel.particles();
   const double a = 0.4, g = 3.6, mu = 0.15;
-  for (std::size_t i = 0; i < p.size(); ++i) {
-    const double y = p.position[i][1];
-    if (p.kind[i] == sph::ParticleKind::fluid) p.velocity[i][0] = g * (a * a - y * y) / (2 * mu);
-  }
+  const sph::Particles<2> p = on_parabola(channel, a, g, mu);
   const double rho0 = channel.lattice_density<sph::Kernel<2>>();
   const sph::Simulation<ViscousScene<OnePass>> walled(
       p, channel.box(), sph::WeaklyCompressible(1, rho0), OnePass(mu, Walls(0.0, a, 1)),
@@ -242,4 +249,31 @@ TEST_CASE("Artificial viscosity on all pairs: nu = alpha c h / 8, the parabola, 
   CHECK_THROWS_WITH(AllPairs(-1.0, c, h), Catch::Contains("alpha"));
   CHECK_THROWS_WITH(AllPairs(1.0, 0.0, h), Catch::Contains("sound speed"));
   CHECK_THROWS_WITH(AllPairs::for_viscosity(std::nan(""), c, h), Catch::Contains("nu"));
+}
+
+// The kinematic form, mu_i = nu rho_i: on the lattice at rest density rho0 it is the constant
+// mu = nu rho0 to round-off; and it refuses a viscosity that is not positive.
+TEST_CASE("One-pass viscosity, kinematic: mu = nu rho at each particle", "[channel]") {
+  const sph::setups::PoiseuilleChannel channel;
+  const double a = 0.4, g = 3.6, mu = 0.15;
+  const sph::Particles<2> p = on_parabola(channel, a, g, mu);
+  const double rho0 = channel.lattice_density<sph::Kernel<2>>();
+  using Bare = sph::MorrisFoxZhu1997<2>;
+  const sph::Simulation<ViscousScene<Bare>> constant(
+      p, channel.box(), sph::WeaklyCompressible(1, rho0), Bare(mu), channel_settings());
+  const sph::Simulation<ViscousScene<Bare>> kinematic(
+      p, channel.box(), sph::WeaklyCompressible(1, rho0), Bare::kinematic(mu / rho0),
+      channel_settings());
+  double worst = 0, scale = 0;
+  for (std::size_t i = 0; i < p.size(); ++i) {
+    const sph::Vec<2>& x = constant.particles().acceleration[i];
+    const double rho = constant.particles().density[i];
+    // where the density is the lattice's, mu_i + mu_j = 2 mu; near the walls' edge it is not
+    if (std::abs(rho / rho0 - 1) > 1e-12) continue;
+    worst = std::max(worst, (x - kinematic.particles().acceleration[i]).norm());
+    scale = std::max(scale, x.norm());
+  }
+  CHECK(scale > 0);
+  CHECK(worst < 1e-10 * scale);
+  CHECK_THROWS_WITH(Bare::kinematic(0.0), Catch::Contains("kinematic viscosity"));
 }

@@ -35,10 +35,13 @@
 namespace sph {
 
 /// The one-pass shear viscosity of Morris, Fox & Zhu (1997) with a constant coefficient
-/// \f$ \mu_s \f$, and walls of type Walls.
+/// \f$ \mu_s \f$ -- or, made by `kinematic`, a constant kinematic viscosity \f$ \nu \f$ and
+/// \f$ \mu_i = \nu\rho_i \f$ at each particle (the viscous ring of chapter 10) -- and walls of
+/// type Walls.
 template <int D, class Walls = NoWalls>
 struct MorrisFoxZhu1997 {
   double shear = 0;  ///< \f$ \mu_s \f$, constant
+  double nu = 0;     ///< if positive, \f$ \mu_i = \nu\rho_i \f$ in place of `shear`
   Walls walls{};
 
   MorrisFoxZhu1997() = default;
@@ -48,8 +51,23 @@ struct MorrisFoxZhu1997 {
         "one-pass viscosity: the shear viscosity must be non-negative (got " + show(mu_s) + ")");
   }
 
+  /// The term with a constant kinematic viscosity \p viscosity: \f$ \mu_i + \mu_j =
+  /// \nu(\rho_i + \rho_j) \f$ in the pair's factor.
+  static MorrisFoxZhu1997 kinematic(double viscosity, Walls w = {}) {
+    require(std::isfinite(viscosity) && viscosity > 0,
+            "one-pass viscosity: the kinematic viscosity must be positive (got " + show(viscosity) +
+                ")");
+    MorrisFoxZhu1997 t(0.0, std::move(w));
+    t.nu = viscosity;
+    return t;
+  }
+
   std::string describe() const {
     char s[96];
+    if (nu > 0) {
+      std::snprintf(s, sizeof s, "one-pass viscosity (Morris, Fox & Zhu 1997), nu_s = %g", nu);
+      return s;
+    }
     std::snprintf(s, sizeof s, "one-pass viscosity (Morris, Fox & Zhu 1997), mu_s = %g", shear);
     return s;
   }
@@ -62,7 +80,8 @@ struct MorrisFoxZhu1997 {
         walls.velocity_difference(p.i, p.j, in, v_ij);  // eq 17 of Watkins et al.
     }
     // r . grad_i W = gradient_factor r^2
-    const double factor = in.m[p.j] * 2 * shear / (in.rho[p.i] * in.rho[p.j]) * p.gradient_factor *
+    const double mu_sum = nu > 0 ? nu * (in.rho[p.i] + in.rho[p.j]) : 2 * shear;
+    const double factor = in.m[p.j] * mu_sum / (in.rho[p.i] * in.rho[p.j]) * p.gradient_factor *
                           p.r2 / (p.r2 + 0.01 * p.h_bar * p.h_bar);
     PairAcceleration out;
     double v2 = 0;
@@ -76,6 +95,7 @@ struct MorrisFoxZhu1997 {
 
   static constexpr const char* timestep_name = "viscous diffusion";
   double timestep(std::size_t i, const ParticleView<D>& in) const {
+    if (nu > 0) return 0.125 * in.h[i] * in.h[i] / nu;
     if (!(shear > 0)) return std::numeric_limits<double>::infinity();
     return 0.125 * in.h[i] * in.h[i] * in.rho[i] / shear;
   }
