@@ -101,7 +101,8 @@ struct Parameters {
 /// standard library's \f$ I_\nu \f$ where that is finite, and shows it beyond.
 ///
 /// The second table follows the solution: its peak, the radial drift at
-/// \f$ x = 0.9 \f$ and 1.1 (in towards the point mass inside, out beyond), and the mass left
+/// \f$ x = 0.9 \f$ and 1.1 (in towards the point mass inside, out beyond, until
+/// \f$ \tau = 0.512 \f$), and the mass left
 /// in the disc, found by integrating \f$ 2\pi R\sigma \f$.  The mass is *not* constant: the
 /// solution has no torque at R = 0 and gas flows onto the point mass there, 7 % of the ring by
 /// \f$ \tau = 1 \f$ (tests/sph/test_viscous_ring.cpp checks the rate against the inflow).  Our
@@ -151,12 +152,12 @@ void step1_solution(const Parameters& par) {
 /// h = 0.045, started at \f$ \tau_0 = 0.016 \f$ with Keplerian rotation and eq 21's drift
 /// (lib/sph/setups/viscous_ring.hpp).  Open, and our choices:
 ///  - <b>the annulus the particles fill</b>: \f$ 0.75 \le x \le 1.25 \f$, where \f$ \sigma \f$
-///    at \f$ \tau_0 \f$ has fallen to 2 % of its peak (the table prints the edges' ratios);
+///    at \f$ \tau_0 \f$ has fallen to 2.5 % and 1.7 % of its peak (the table's edge ratios);
 ///    the particles hold 0.9948962 of the ring's mass.  With Watkins' 14500 particles and h
 ///    that is about 117 neighbours.  A wider annulus adds particles of ever smaller mass;
 ///    Step 5 runs one, \f$ 0.5 \le x \le 1.5 \f$, and finds that the answer depends on it;
 ///  - <b>the output times</b>: \f$ \tau_0 \f$ and its doublings, to \f$ \tau = 1.024 \f$
-///    (at \f$ \nu = 1.5\cdot10^{-3} \f$ that is t = 56, nine orbits of the ring's radius);
+///    (at \f$ \nu = 1.5\cdot10^{-3} \f$ that is nine orbits of the ring's radius);
 ///  - <b>the particles that reach the point mass</b>: the solution sends gas to R = 0.  A
 ///    particle closer than \f$ r_\mathrm{acc} = 0.1 \f$ is accreted: taken out of the gas, its
 ///    mass and angular momentum counted (`ring_run.hpp`).  The accreted mass is compared with
@@ -363,29 +364,32 @@ Watkins watkins(const sph::setups::ViscousRingDisc& disc) {
 /// The run of Fig 5, scored at each output time by `score`: `L1(sig)`, the mass the point mass
 /// has taken against eq 20's, the change of the angular momentum of gas and point mass
 /// together (`dL/L`), the gas's mean radius `<R>` and its rms `width` about it against eq 20's,
-/// the ring's disorder (`disor`, and `at R` where it is largest) and the particles left.
+/// the ring's disorder (`disor`: the largest, over annuli 0.005 wide, of the rms of
+/// \f$ \sigma \f$ about the annulus's mean over that mean -- 0 while every ring of particles
+/// is a smooth ring -- and `at R`, where it is largest) and the particles left.  Our rings hold
+/// 14501 particles, the nearest to Watkins' 14500.
 ///
 /// What it shows (`fig5_ring.png`).  For the first orbit the particles follow eq 20: L1 is
-/// 0.0271 at \f$ \tau = 0.032 \f$ and 0.0250 at 0.064, the mean radius is eq 20's to its
-/// third digit, the width to a few per cent (the SPH ring spreads a little slower: 0.2297
-/// against 0.2506 at \f$ \tau = 0.128 \f$).  Then the inner edge comes apart.  The particles
-/// that have drifted in to R = 0.5-0.6 stop lying on one curve: the disorder rises from
-/// 0.080 at \f$ \tau = 0.064 \f$ (at R = 0.63) to 0.552 at \f$ \tau = 0.256 \f$ (at
-/// R = 0.60), where the figure shows the inner rings broken into streaks and clumps, and L1
+/// 0.0271 at \f$ \tau = 0.032 \f$ and 0.0251 at 0.064, the mean radius is eq 20's to
+/// 0.6 %, the width to 1 % at \f$ \tau = 0.064 \f$ and 8 % at 0.128 (the SPH ring spreads
+/// a little slower: 0.2297 against 0.2506).  Then the inner edge comes apart.  The particles
+/// that have drifted in to R = 0.5-0.6 stop lying on one curve: the disorder is 0.080 at
+/// \f$ \tau = 0.064 \f$ (at R = 0.63), 0.035 at 0.128, and 0.552 at \f$ \tau = 0.256 \f$
+/// (at R = 0.60), where the figure shows the inner rings broken into streaks and clumps; L1
 /// doubles to 0.1113.  \f$ \tau = 0.256 \f$ is t = 13.3, about two orbits of the ring's
 /// radius and more than four of the radius where the disorder starts.  Particles thrown out
 /// go as far as R = 2, and at t = 27.3, just before \f$ \tau = 0.512 \f$, one of them has no
 /// neighbour left within 2h: the run stops there, naming it (a particle with no neighbours
 /// has no density).  Watkins' term has changed the angular momentum of gas and point mass by
-/// up to 5.1e-03 by then (its sums are not antisymmetric, chapter 7).  After the breakup the
-/// run is chaotic: a change of the set-up that moved 27 particles moved the stop by a few
-/// tenths in t.
+/// 5.1e-03 at \f$ \tau = 0.256 \f$, the last output (its sums are not antisymmetric,
+/// chapter 7).  No particle reached the accretion radius by then, where eq 20 has sent
+/// 1.72e-03 of the ring to the point mass.
 ///
 /// The paper's claim, "after approximately ten orbital periods, an instability develops at
 /// the inner edge, in which the inner rings begin to oscillate in and out ... then begin to
-/// break up into clumps": **reproduced in kind, not in time** -- the inner edge breaks up, as
-/// they describe, but after two orbits of \f$ R_0 \f$, not ten (they do not say at which
-/// radius they count an orbit).
+/// break up into clumps": **reproduced in kind, sooner than the paper** -- the inner edge
+/// breaks up as they describe, but by two orbits if orbits are counted at \f$ R_0 \f$,
+/// against their ten (they do not say at which radius they count).
 RingResult step3_fig5(const app::Chapter& chapter, const Parameters& par) {
   std::printf("Step 3: Fig 5, nu = 1.5e-3\n");
   const auto disc = par.disc(1.5e-3);
@@ -398,23 +402,23 @@ RingResult step3_fig5(const app::Chapter& chapter, const Parameters& par) {
 /// The same at three times the viscosity: the same \f$ \tau \f$ in a third of the time, a
 /// third of the orbits.
 ///
-/// What it shows (`fig6_ring.png`).  *"At early times the ring evolves slightly faster than
-/// the Lynden-Bell & Pringle solution"*: **reproduced**.  At \f$ \tau = 0.064 \f$ the width
-/// is 0.1932 against eq 20's 0.1781, at 0.128 0.2720 against 0.2506, and the mean radius has
-/// moved out to 1.0397 against 1.0165 -- where at the lower viscosity the ring lagged.  Three
-/// times the viscosity is three times closer to the orbital time, and the solution assumes
-/// the ring evolves on the viscous time alone.  *"Able to evolve to the end of the simulation
-/// without being significantly corrupted"*: **not reproduced**.  The inner edge comes apart
-/// here too, in less than one orbit of \f$ R_0 \f$: at \f$ \tau = 0.256 \f$ (t = 4.4)
-/// the disorder is 0.435 at R = 0.23; L1 reaches 0.5400 at \f$ \tau = 0.512 \f$ and 0.6008
-/// at 1.024, the particles scattered from the accretion radius to nearly R = 2.  The run itself
-/// reaches \f$ \tau = 1.024 \f$, and the mass the point mass takes follows eq 20 even
-/// then: 7.14e-02 against 7.03e-02.
+/// What it shows (`fig6_ring.png`).  *"At early times the ring evolves slightly faster than the
+/// Lynden-Bell & Pringle solution"*: **reproduced**.  At \f$ \tau = 0.064 \f$ the width is 0.1932
+/// against eq 20's 0.1781, at 0.128 0.2720 against 0.2506, and the mean radius has moved out to
+/// 1.0397 against 1.0165 -- where at the lower viscosity the ring lagged.  The paper's reason,
+/// probably the right one: three times the viscosity is three times closer to the orbital time, and
+/// the solution assumes the ring evolves on the viscous time alone.  *"Able to evolve to the end of
+/// the simulation without being significantly corrupted"*: **not reproduced**.  The inner edge
+/// comes apart here too, in less than one orbit of \f$ R_0 \f$: at \f$ \tau = 0.256 \f$ (t = 4.4)
+/// the disorder is 0.435 at R = 0.23; L1 reaches 0.5400 at \f$ \tau = 0.512 \f$ and 0.6008 at
+/// 1.024, the particles scattered from the accretion radius to nearly R = 2.  The run itself
+/// reaches \f$ \tau = 1.024 \f$, and the mass the point mass takes follows eq 20 even then:
+/// 7.14e-02 against 7.03e-02.
 ///
 /// *The self-density floor ends the runs' useful life*: **not reached**.  The floor of the
 /// heaviest particle is 0.0347 (Step 2), and eq 20's peak at \f$ \tau = 1.024 \f$ is still
-/// 0.1284 (Step 1): our runs are ended by the breakup of their inner edges long before the
-/// floor matters.
+/// 0.1284 (Step 1): the breakup of the inner edges spoils our runs long before the floor
+/// matters.
 RingResult step4_fig6(const app::Chapter& chapter, const Parameters& par) {
   std::printf("Step 4: Fig 6, nu = 4.5e-3\n");
   const auto disc = par.disc(4.5e-3);
@@ -424,18 +428,20 @@ RingResult step4_fig6(const app::Chapter& chapter, const Parameters& par) {
 
 /// \section ch10_step5 Step 5: scheme or flow? Another annulus, more particles, another operator
 ///
-/// Steps 3 and 4 break up at the inner edge far sooner than the paper's runs.  Three runs at
+/// Steps 3 and 4 break up at the inner edge far sooner than the paper's runs.  Four runs at
 /// \f$ \nu = 1.5\cdot10^{-3} \f$ to \f$ \tau = 0.256 \f$ ask what the breakup depends on:
 ///  - **the annulus** the paper leaves open, widened to \f$ 0.5 \le x \le 1.5 \f$: particles
-///    down to \f$ 10^{-7} \f$ of the peak, and, the same 14500 in twice the area, half the
-///    neighbours.  The answer depends on it: the wide annulus comes apart sooner, disorder
-///    0.403 at \f$ \tau = 0.128 \f$ (at R = 0.17, particles of the wing that fell in), and
-///    L1 0.3850 at \f$ \tau = 0.256 \f$ against the chapter's 0.1113.  This run changes both
-///    the wing and the neighbour number, and does not tell which of the two matters;
-///  - **four times the particles**, h halved, the same neighbours: the disorder starts where
-///    and when it started, 0.100 at R = 0.59 at \f$ \tau = 0.064 \f$ (0.080 at R = 0.63 with
-///    14500).  The breakup is not a lack of resolution.  This run stops sooner (t = 6.13), when
-///    a particle thrown inwards has no neighbour left within its smaller 2h;
+///    far out in the low-density tails of \f$ \sigma \f$, and, the same 14500 in twice the
+///    area, half the neighbours.  The answer depends on it: the wide annulus comes apart
+///    sooner, disorder 0.403 at \f$ \tau = 0.128 \f$ (at R = 0.17, among tail particles that
+///    fell in), and L1 0.3850 at \f$ \tau = 0.256 \f$ against the chapter's 0.1113.  This run
+///    changes both the tails and the neighbour number, and does not tell which of the two
+///    matters;
+///  - **four times the particles**, h halved, the same neighbours: the early disorder appears
+///    where and when it did, 0.100 at R = 0.59 at \f$ \tau = 0.064 \f$ (0.080 at R = 0.63 with
+///    14501), and does not go away with resolution.  This run stops sooner (t = 6.13, before
+///    \f$ \tau = 0.128 \f$), when a particle thrown inwards has no neighbour left within its
+///    smaller 2h, so it cannot show the breakup itself;
 ///  - **a one-pass operator**, that of Morris, Fox & Zhu (1997, chapter 8) with
 ///    \f$ \mu_i = \nu\sigma_i \f$ (lib/sph/terms/morris_fox_zhu_1997.hpp).  Its pairs push
 ///    equally and oppositely, so it conserves momentum, but along \f$ \mathbf v_{ij} \f$, so
@@ -447,20 +453,24 @@ RingResult step4_fig6(const app::Chapter& chapter, const Parameters& par) {
 ///    \f$ 2(\nabla\sigma\cdot\nabla)\mathbf v + \nabla\sigma\times(\nabla\times\mathbf v)
 ///    \f$ where it has \f$ (\nabla\sigma\cdot\nabla)\mathbf v \f$ -- probably why: the
 ///    wrong viscous force for this flow, not a numerical flaw;
-///  - **another operator**: Monaghan's artificial viscosity on all pairs as the shear viscosity,
-///    as in chapter 8 (lib/sph/terms/monaghan_shear_viscosity.hpp), on the chapter's particles
+///  - **a central operator**: Monaghan's artificial viscosity applied to receding as well as
+///    approaching pairs, as the shear viscosity, as in chapter 8
+///    (lib/sph/terms/monaghan_shear_viscosity.hpp), on the chapter's particles
 ///    (`fig5_monaghan.png`).  It follows eq 20 more closely at every time, L1 0.0074, 0.0049,
-///    0.0184 and 0.0751 against Watkins' 0.0271, 0.0251, 0.0504 and 0.1113, and its disorder
-///    stays at 0.163 by \f$ \tau = 0.256 \f$ against 0.552.  Its pair forces are central, and
-///    the angular momentum of gas and point mass is conserved to 5.7e-14 -- against Watkins'
-///    5.1e-03.  Its inner particles are not quite orderly either (0.158 at R = 0.21 by
-///    \f$ \tau = 0.128 \f$), and they lie below eq 20 inside R = 0.5.
+///    0.0184 and 0.0751 against Watkins' 0.0271, 0.0251, 0.0504 and 0.1113, and its disorder stays
+///    at 0.163 by \f$ \tau = 0.256 \f$ against 0.552.  Its pair forces are central, and the angular
+///    momentum of gas and point mass is conserved to 5.7e-14 -- against Watkins' 5.1e-03.  It has
+///    costs of its own: its inner particles are not quite orderly either (0.158 at R = 0.21 by \f$
+///    \tau = 0.128 \f$), they lie below eq 20 inside R = 0.5, and they reach the point mass too
+///    soon: 3.56e-03 of the ring accreted by \f$ \tau = 0.256 \f$, twice eq 20's 1.72e-03 (Watkins'
+///    run: none).
 ///
-/// So the early breakup is, at least in large part, the scheme's: not a matter of resolution,
-/// worse with Watkins' operator than with a central one, and sensitive to the particles of the
-/// wing.  The one-pass operator, which conserves momentum but not angular momentum, shows the
-/// breakup too (disorder 0.368 at \f$ \tau = 0.256 \f$), on a ring that is already wrong.
-/// What in Watkins' operator drives it -- its torque on the pairs, the gradient of
+/// So the early breakup is, at least in large part, the scheme's: its early disorder does not go
+/// away with resolution, it is worse with Watkins' operator than with a central one, and it is
+/// sensitive to the particles of the tails.  The one-pass operator, which conserves momentum but
+/// not angular momentum, shows the breakup too (disorder 0.368 at \f$ \tau = 0.256 \f$), on a ring
+/// that is already wrong. What in Watkins' operator drives it -- its torque on the pairs, the
+/// gradient of
 /// \f$ \mu_s = \nu\sigma \f$ at the steep inner edge -- these runs do not decide.
 RingResult step5_experiments(const app::Chapter& chapter, const Parameters& par) {
   const double tau_end = par.quick ? 0.064 : 0.256;
@@ -509,12 +519,12 @@ RingResult step5_experiments(const app::Chapter& chapter, const Parameters& par)
 /// with a logarithmic colour scale: the map is a measure, the drawing knows no kernels.
 ///
 /// What it shows (`ring_maps.png`, the start and the last two times of Fig 5's run).  At
-/// \f$ \tau = 0.128 \f$ the inner disc already carries concentric ripples, the "density
-/// waves" of the paper, while the outer rings are smooth; at 0.256 the disc inside
-/// R = 0.7 has broken into clumps -- the breakup of Step 3, seen from above, and the one
-/// Watkins et al. describe.  Each map holds the gas's mass to the seventh digit (0.9948962)
-/// while the gas lies inside it; at \f$ \tau = 0.256 \f$ it holds 0.9938244 of 0.9948962,
-/// the rest having spread beyond its edge.
+/// \f$ \tau = 0.128 \f$ the inner disc already carries concentric ripples, probably what the
+/// paper calls "density waves", while the outer rings are still rings, not clumps; at 0.256 the
+/// disc inside R = 0.7 has broken into clumps -- the breakup of Step 3, seen from above, and the
+/// one Watkins et al. describe.  Each map holds the gas's mass to the seventh digit (0.9948962)
+/// while the gas lies inside it; at \f$ \tau = 0.256 \f$ it holds 0.9938244 of 0.9948962, the rest
+/// having spread beyond its edge.
 void step6_maps(const app::Chapter& chapter, const RingRun& run, double accretion_radius) {
   std::printf("Step 6: the ring of Fig 5 face-on\n");
   const sph::MapGrid grid{360, 360, -1.8, 1.8, -1.8, 1.8};
@@ -556,13 +566,14 @@ void step6_maps(const app::Chapter& chapter, const RingRun& run, double accretio
 /// order of convergence in the particle spacing).
 ///
 /// What it shows.  Monaghan's central viscosity is the most accurate in \f$ \sigma \f$ at
-/// every resolution and the cheapest: \f$ L_1 \f$ 0.0142, 0.0069 and 0.0049, against
-/// Watkins' 0.0445, 0.0269 and 0.0251, in little more than half the wall time (2.37 s against
-/// 4.13 s at 14501 particles: Watkins' two passes cost more per step).  In the ring's width
+/// every resolution, cheaper than Watkins' and as cheap as the one pass: \f$ L_1 \f$ 0.0142,
+/// 0.0069 and 0.0049, against Watkins' 0.0445, 0.0269 and 0.0251, in little more than half
+/// the wall time (2.37 s against 4.13 s at 14501 particles; probably the cost of Watkins'
+/// second pass, not measured apart here).  In the ring's width
 /// Watkins' operator converges fastest, from 0.0840 to 0.0113, and passes Monaghan's, which
 /// stays near 0.03 (0.0270 at 14501).  The one-pass operator does not converge at all: \f$ L_1 \f$
-/// 0.2069 to 0.2214, the width 22 % narrow at every resolution -- the missing term of
-/// Step 5, which no resolution supplies.
+/// 0.2069 to 0.2214, the width 22 % narrow at every resolution -- probably the missing term
+/// of Step 5, which no resolution supplies.
 void step7_error_vs_time(const app::Chapter& chapter, const Parameters& par) {
   const double tau = 0.064;
   const std::vector<int> numbers =
@@ -616,7 +627,7 @@ void step7_error_vs_time(const app::Chapter& chapter, const Parameters& par) {
 /// \section ch10_findings The findings
 ///
 /// Each claim of Watkins et al.'s sects. 4.2 and 5, with the numbers of the recorded run that
-/// decide it (Steps 3-5; 14528 particles in \f$ 0.75 \le x \le 1.25 \f$, h = 0.045).
+/// decide it (Steps 3-5 and 7; 14501 particles in \f$ 0.75 \le x \le 1.25 \f$, h = 0.045).
 ///
 ///  - *The ring evolves on the correct viscous timescale* (sect. 5): **reproduced until the
 ///    inner edge breaks up**.  To \f$ \tau = 0.128 \f$ the mean radius and the width follow
@@ -625,33 +636,36 @@ void step7_error_vs_time(const app::Chapter& chapter, const Parameters& par) {
 ///    0.4624 at \f$ \tau = 0.512 \f$, at the higher).
 ///  - *An instability at the inner edge after about ten orbits at*
 ///    \f$ \nu = 1.5\cdot10^{-3} \f$, *the inner rings oscillating and breaking into clumps*:
-///    **reproduced in kind, not in time** -- after two orbits of \f$ R_0 \f$.
+///    **reproduced in kind, sooner than the paper** -- by two orbits, counted at \f$ R_0 \f$.
 ///  - *At* \f$ \nu = 4.5\cdot10^{-3} \f$ *the ring evolves slightly faster than the solution
 ///    at early times*: **reproduced** (width 0.1932 against 0.1781 at \f$ \tau = 0.064 \f$).
 ///  - *... and reaches the end without being significantly corrupted*: **not reproduced**
 ///    (L1 0.6008 at \f$ \tau = 1.024 \f$).
 ///  - *The self-density of the heaviest particles ends the evolution*: **not reached** -- the
-///    floor is 0.0347, eq 20's peak never falls below 0.1284 in our runs, which the breakup ends
-///    first.
-///  - *The instability may be that of Maddison et al.* (a property of the flow): our runs point
-///    at the scheme -- the same breakup at four times the particles, less of it with a central
+///    floor is 0.0347, eq 20's peak is still 0.1284 at \f$ \tau = 1.024 \f$, and the breakup
+///    spoils the runs long before.
+///  - *The instability may be that of Maddison et al.* (which we read as: a property of the
+///    flow): our runs point at the scheme -- the same early disorder at four times the
+///    particles, less of it with a central
 ///    viscosity that conserves angular momentum (Step 5).
 ///
 ///  - *The method gives accurate treatment of shear viscosity in dynamic situations* (sect. 5):
 ///    **reproduced only before the breakup** (\f$ L_1 \f$ 0.0251 at \f$ \tau = 0.064 \f$ with
 ///    14501 particles, the width converging), and not better than a central operator:
 ///    Monaghan's viscosity on all pairs is more accurate in \f$ \sigma \f$ at every
-///    resolution, in less time, and holds the ring longer (Steps 5 and 7).
+///    resolution, in less time, and holds the ring longer (Steps 5 and 7), though it sends
+///    twice eq 20's mass to the point mass.
 ///
 /// The choices the paper leaves open: the annulus (it matters: Step 5), the output times
-/// (doublings of \f$ \tau_0 \f$; Figs 5-6 are drawn at all of them), the particles that reach
-/// the point mass (accreted inside 0.1; the accreted mass follows eq 20, 7.14e-02 against
-/// 7.03e-02 at \f$ \tau = 1.024 \f$).
+/// (doublings of \f$ \tau_0 \f$; Figs 5-6 are drawn at all of them the runs reached), the
+/// particles that reach the point mass (accreted inside 0.1; in the run of Fig 6 the accreted
+/// mass follows eq 20, 7.14e-02 against 7.03e-02 at \f$ \tau = 1.024 \f$).
 ///
 /// \section ch10_try What to try
 ///
 ///  - `--inner 0.6 --outer 1.4`: an annulus between the chapter's and the wide one of Step 5;
-///  - `--particles 7250`: the chapter's annulus with the neighbours of the wide one (59);
+///  - `--particles 7250`: the chapter's annulus with the neighbours of the wide one (Step 2
+///    prints the neighbours of a run);
 ///  - `--accretion-radius 0.2`: does taking the inner particles sooner hold the inner edge?
 ///
 /// \section ch10_main The main program
