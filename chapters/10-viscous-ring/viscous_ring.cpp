@@ -664,8 +664,8 @@ void step7_error_vs_time(const app::Chapter& chapter, const Parameters& par) {
 /// \section ch10_try What to try
 ///
 ///  - `--inner 0.6 --outer 1.4`: an annulus between the chapter's and the wide one of Step 5;
-///  - `--particles 7250`: the chapter's annulus with the neighbours of the wide one (Step 2
-///    prints the neighbours of a run);
+///  - `--particles 3600`: a quarter of the particles, h doubled to keep the neighbours: does
+///    the inner edge break up at the same \f$ \tau \f$?
 ///  - `--accretion-radius 0.2`: does taking the inner particles sooner hold the inner edge?
 ///
 /// \section ch10_main The main program
