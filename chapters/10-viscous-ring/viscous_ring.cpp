@@ -71,16 +71,19 @@ struct Parameters {
   double inner = 0.75, outer = 1.25;  // the annulus the particles start in (not given)
   double tau_end = 1.024;             // the last output time
   double accretion_radius = 0.1;
+  double neighbours = 0;  // if positive, h from this neighbour number in place of Watkins' h
   bool quick = false;
 
   /// The disc for viscosity \p nu: Watkins' h at 14500 particles, and the same number of
-  /// neighbours at any other number.
+  /// neighbours at any other number -- or, with `--neighbours`, h for that many.
   sph::setups::ViscousRingDisc disc(double nu) const {
     sph::setups::ViscousRingDisc d;
     d.particles = particles;
     d.inner = inner;
     d.outer = outer;
     d.h = h * std::sqrt(14500.0 / particles);
+    // (in 2D a support of radius 2h holds pi (2h)^2 / Delta^2 neighbours)
+    if (neighbours > 0) d.h = d.spacing() * std::sqrt(neighbours / (4 * std::numbers::pi));
     d.ring = sph::ViscousRing(1.0, 1.0, nu);
     return d;
   }
@@ -428,15 +431,21 @@ RingResult step4_fig6(const app::Chapter& chapter, const Parameters& par) {
 
 /// \section ch10_step5 Step 5: scheme or flow? Another annulus, more particles, another operator
 ///
-/// Steps 3 and 4 break up at the inner edge far sooner than the paper's runs.  Four runs at
+/// Steps 3 and 4 break up at the inner edge far sooner than the paper's runs.  Five runs at
 /// \f$ \nu = 1.5\cdot10^{-3} \f$ to \f$ \tau = 0.256 \f$ ask what the breakup depends on:
 ///  - **the annulus** the paper leaves open, widened to \f$ 0.5 \le x \le 1.5 \f$: particles
 ///    far out in the low-density tails of \f$ \sigma \f$, and, the same 14500 in twice the
 ///    area, half the neighbours.  The answer depends on it: the wide annulus comes apart
 ///    sooner, disorder 0.403 at \f$ \tau = 0.128 \f$ (at R = 0.17, among tail particles that
 ///    fell in), and L1 0.3850 at \f$ \tau = 0.256 \f$ against the chapter's 0.1113.  This run
-///    changes both the tails and the neighbour number, and does not tell which of the two
+///    changes both the tails and the neighbour number; the next tells which of the two
 ///    matters;
+///  - **the chapter's annulus with the wide one's neighbours**, 59 (h = 0.0319): no tails,
+///    half the neighbours.  It breaks up sooner too: disorder 0.350 at \f$ \tau = 0.128 \f$
+///    (at R = 0.44) against the chapter's 0.035, and at t = 7.31 a particle thrown inwards has
+///    no neighbour left.  It is the neighbour number, more than the tails, that made the wide
+///    annulus break up sooner -- probably because Watkins' sums over fewer neighbours are
+///    noisier;
 ///  - **four times the particles**, h halved, the same neighbours: the early disorder appears
 ///    where and when it did, 0.100 at R = 0.59 at \f$ \tau = 0.064 \f$ (0.080 at R = 0.63 with
 ///    14501), and does not go away with resolution.  This run stops sooner (t = 6.13, before
@@ -466,8 +475,8 @@ RingResult step4_fig6(const app::Chapter& chapter, const Parameters& par) {
 ///    run: none).
 ///
 /// So the early breakup is, at least in large part, the scheme's: its early disorder does not go
-/// away with resolution, it is worse with Watkins' operator than with a central one, and it is
-/// sensitive to the particles of the tails.  The one-pass operator, which conserves momentum but
+/// away with resolution, it is worse with Watkins' operator than with a central one, and it
+/// comes sooner with fewer neighbours.  The one-pass operator, which conserves momentum but
 /// not angular momentum, shows the breakup too (disorder 0.368 at \f$ \tau = 0.256 \f$), on a ring
 /// that is already wrong. What in Watkins' operator drives it -- its torque on the pairs, the
 /// gradient of
@@ -481,6 +490,14 @@ RingResult step5_experiments(const app::Chapter& chapter, const Parameters& par)
   const auto wide_disc = wide.disc(1.5e-3);
   std::printf(" Watkins' term, particles in 0.5 <= x <= 1.5:\n");
   run_and_report(chapter, par, wide_disc, watkins(wide_disc), "wide annulus", "", "", tau_end);
+  /// The chapter's annulus with the wide annulus's neighbours (h for 59): no tails, half the
+  /// neighbours.
+  Parameters fewer = par;
+  fewer.neighbours = 59;
+  const auto fewer_disc = fewer.disc(1.5e-3);
+  std::printf(" Watkins' term, particles in %g <= x <= %g, h = %.4f (59 neighbours):\n", par.inner,
+              par.outer, fewer_disc.h);
+  run_and_report(chapter, par, fewer_disc, watkins(fewer_disc), "59 neighbours", "", "", tau_end);
   /// Four times the particles in the chapter's annulus, h halved (the same neighbours):
   Parameters fine = par;
   fine.particles = 4 * par.particles;
@@ -568,7 +585,7 @@ void step6_maps(const app::Chapter& chapter, const RingRun& run, double accretio
 /// What it shows.  Monaghan's central viscosity is the most accurate in \f$ \sigma \f$ at
 /// every resolution, cheaper than Watkins' and as cheap as the one pass: \f$ L_1 \f$ 0.0142,
 /// 0.0069 and 0.0049, against Watkins' 0.0445, 0.0269 and 0.0251, in little more than half
-/// the wall time (2.37 s against 4.13 s at 14501 particles; probably the cost of Watkins'
+/// the wall time (2.72 s against 4.78 s at 14501 particles; probably the cost of Watkins'
 /// second pass, not measured apart here).  In the ring's width
 /// Watkins' operator converges fastest, from 0.0840 to 0.0113, and passes Monaghan's, which
 /// stays near 0.03 (0.0270 at 14501).  The one-pass operator does not converge at all: \f$ L_1 \f$
@@ -646,9 +663,8 @@ void step7_error_vs_time(const app::Chapter& chapter, const Parameters& par) {
 ///    spoils the runs long before.
 ///  - *The instability may be that of Maddison et al.* (which we read as: a property of the
 ///    flow): our runs point at the scheme -- the same early disorder at four times the
-///    particles, less of it with a central
+///    particles, a sooner breakup with fewer neighbours, and less of it with a central
 ///    viscosity that conserves angular momentum (Step 5).
-///
 ///  - *The method gives accurate treatment of shear viscosity in dynamic situations* (sect. 5):
 ///    **reproduced only before the breakup** (\f$ L_1 \f$ 0.0251 at \f$ \tau = 0.064 \f$ with
 ///    14501 particles, the width converging), and not better than a central operator:
@@ -656,7 +672,8 @@ void step7_error_vs_time(const app::Chapter& chapter, const Parameters& par) {
 ///    resolution, in less time, and holds the ring longer (Steps 5 and 7), though it sends
 ///    twice eq 20's mass to the point mass.
 ///
-/// The choices the paper leaves open: the annulus (it matters: Step 5), the output times
+/// The choices the paper leaves open: the annulus (it matters, through the neighbours it gives
+/// Watkins' 14500 particles and h: Step 5), the output times
 /// (doublings of \f$ \tau_0 \f$; Figs 5-6 are drawn at all of them the runs reached), the
 /// particles that reach the point mass (accreted inside 0.1; in the run of Fig 6 the accreted
 /// mass follows eq 20, 7.14e-02 against 7.03e-02 at \f$ \tau = 1.024 \f$).
@@ -667,6 +684,8 @@ void step7_error_vs_time(const app::Chapter& chapter, const Parameters& par) {
 ///  - `--particles 3600`: a quarter of the particles, h doubled to keep the neighbours: does
 ///    the inner edge break up at the same \f$ \tau \f$?
 ///  - `--accretion-radius 0.2`: does taking the inner particles sooner hold the inner edge?
+///  - `--neighbours 200`: more neighbours than the chapter's 117 (Step 2 prints them) -- does
+///    the inner edge hold longer still?
 ///
 /// \section ch10_main The main program
 ///
@@ -689,6 +708,10 @@ int main(int argc, char** argv) {
         .check(app::between(1.05, 5));
     chapter.parameter("--accretion-radius", par.accretion_radius, "accretion radius, in R_0")
         .check(app::between(0.01, 0.5));
+    chapter
+        .parameter("--neighbours", par.neighbours,
+                   "h for this many neighbours (0: Watkins' h = 0.045 at 14500 particles)")
+        .check(app::between(0, 400));
     if (int rc = chapter.parse(); rc >= 0) return rc;
     par.quick = chapter.quick();
     /// The steps, in order, a blank line between them.
