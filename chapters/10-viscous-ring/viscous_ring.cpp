@@ -579,18 +579,17 @@ void step6_maps(const app::Chapter& chapter, const RingRun& run, double accretio
 /// The three operators of Step 5 on the chapter's annulus at 3600, 7250 and 14500 particles
 /// (h scaled to keep the neighbours), each run to \f$ \tau = 0.064 \f$, before the inner
 /// edge breaks up, and scored by \f$ L_1(\sigma) \f$ and the relative error of the ring's
-/// width, against the wall time of the run (`error_vs_time.png`; p in its legend is the
-/// order of convergence in the particle spacing).
+/// width, against the wall time of the run (`error_vs_time.png`; its legend gives each
+/// operator's order, the power of the particle spacing \f$ \Delta x \f$ fitted to its errors).
 ///
-/// What it shows.  Monaghan's central viscosity is the most accurate in \f$ \sigma \f$ at
-/// every resolution, cheaper than Watkins' and as cheap as the one pass: \f$ L_1 \f$ 0.0142,
-/// 0.0069 and 0.0049, against Watkins' 0.0445, 0.0269 and 0.0251, in little more than half
-/// the wall time (2.72 s against 4.78 s at 14501 particles; probably the cost of Watkins'
-/// second pass, not measured apart here).  In the ring's width
-/// Watkins' operator converges fastest, from 0.0840 to 0.0113, and passes Monaghan's, which
-/// stays near 0.03 (0.0270 at 14501).  The one-pass operator does not converge at all: \f$ L_1 \f$
-/// 0.2069 to 0.2214, the width 22 % narrow at every resolution -- probably the missing term
-/// of Step 5, which no resolution supplies.
+/// What it shows.  Monaghan's central viscosity is the most accurate in \f$ \sigma \f$ at every
+/// resolution, cheaper than Watkins' and as cheap as the one pass: \f$ L_1 \f$ 0.0142, 0.0069 and
+/// 0.0049, against Watkins' 0.0445, 0.0269 and 0.0251, in about half the wall time (1.90 s against
+/// 3.74 s at 14501 particles; probably the cost of Watkins' second pass, not measured apart here).
+/// In the ring's width Watkins' operator converges fastest, from 0.0840 to 0.0113, and passes
+/// Monaghan's, which stays near 0.03 (0.0270 at 14501).  The one-pass operator does not converge at
+/// all: \f$ L_1 \f$ 0.2069 to 0.2214, the width 22 % narrow at every resolution -- probably the
+/// missing term of Step 5, which no resolution supplies.
 void step7_error_vs_time(const app::Chapter& chapter, const Parameters& par) {
   const double tau = 0.064;
   const std::vector<int> numbers =

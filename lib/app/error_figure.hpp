@@ -133,13 +133,16 @@ inline plot::Dash dash_of(std::size_t k) {
   return dashes[k % 4];
 }
 
-/// "alpha=1, beta=2 (p = 0.98)", or the bare name when no order can be fitted.
+/// "alpha=1, beta=2 (error \f$ \propto \Delta x^{0.98} \f$)": the order fitted to the errors
+/// against the particle spacing, so that the legend says what it is; or the bare name when no
+/// order can be fitted.
 inline std::string legend_label(const sph::ErrorVsTime& study, const std::string& method,
                                 const std::string& quantity) {
   std::string label = as_markup(method);
   try {
-    char order[32];
-    std::snprintf(order, sizeof order, " (p = %.2f)", study.order(method, quantity));
+    char order[48];
+    std::snprintf(order, sizeof order, " (\\propto \\Delta x^{%.2f})",
+                  study.order(method, quantity));
     label += order;
   } catch (const sph::Error&) {
   }
